@@ -1,0 +1,263 @@
+//! Circular arcs of any sweep in either direction, full circles included.
+
+use super::{Aabb, Point, Vector};
+use serde::Serialize;
+use std::f64::consts::{PI, TAU};
+
+/// A circular arc: centre, radius, start angle and signed sweep (positive = counter-clockwise).
+///
+/// The sweep lies in [-2π, 2π]; a sweep of ±2π is a full circle starting and ending at the
+/// start angle. Parameter t ∈ [0, 1] runs from start to end at constant speed.
+///
+/// ```
+/// use pocketeer::geom::{Arc, Point};
+/// use std::f64::consts::PI;
+/// let a = Arc::new(Point::new(0.0, 0.0), 2.0, 0.0, PI / 2.0);
+/// assert!((a.end().x).abs() < 1e-12 && (a.end().y - 2.0).abs() < 1e-12);
+/// assert!((a.length() - PI).abs() < 1e-12);
+/// assert!(a.is_ccw());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Arc {
+    /// Centre.
+    pub center: Point,
+    /// Radius (> 0).
+    pub radius: f64,
+    /// Angle of the start point, radians.
+    pub start_angle: f64,
+    /// Signed sweep, radians: positive counter-clockwise.
+    pub sweep: f64,
+}
+
+/// `angle` reduced to [0, 2π).
+pub fn normalize_angle(angle: f64) -> f64 {
+    let a = angle.rem_euclid(TAU);
+    if a >= TAU {
+        0.0
+    } else {
+        a
+    }
+}
+
+impl Arc {
+    /// An arc from its centre, radius, start angle and signed sweep.
+    pub const fn new(center: Point, radius: f64, start_angle: f64, sweep: f64) -> Arc {
+        Arc {
+            center,
+            radius,
+            start_angle,
+            sweep,
+        }
+    }
+
+    /// A full counter-clockwise circle starting at angle 0.
+    pub const fn circle(center: Point, radius: f64) -> Arc {
+        Arc::new(center, radius, 0.0, TAU)
+    }
+
+    /// The arc from `start` to `end` with DXF bulge `bulge` = tan(sweep / 4) (positive:
+    /// counter-clockwise). Returns `None` when the bulge is zero or the points coincide.
+    ///
+    /// ```
+    /// use pocketeer::geom::{Arc, Point};
+    /// let half = Arc::from_bulge(Point::new(1.0, 0.0), Point::new(-1.0, 0.0), 1.0).unwrap();
+    /// assert!((half.radius - 1.0).abs() < 1e-12);
+    /// assert!(half.center.distance(Point::new(0.0, 0.0)) < 1e-12);
+    /// ```
+    pub fn from_bulge(start: Point, end: Point, bulge: f64) -> Option<Arc> {
+        let chord = end - start;
+        if bulge == 0.0 || !bulge.is_finite() || chord.length_sq() == 0.0 {
+            return None;
+        }
+        let sweep = 4.0 * bulge.atan();
+        let center = start.midpoint(end) + chord.perp() * ((1.0 - bulge * bulge) / (4.0 * bulge));
+        let radius = center.distance(start);
+        let start_angle = (start - center).angle();
+        Some(Arc::new(center, radius, start_angle, sweep))
+    }
+
+    /// The arc around `center` from `start` to `end` (the end is projected on the circle through
+    /// `start`), counter-clockwise when `ccw`. Equal start and end give a full circle.
+    pub fn from_center(center: Point, start: Point, end: Point, ccw: bool) -> Arc {
+        let radius = center.distance(start);
+        let a0 = (start - center).angle();
+        let a1 = (end - center).angle();
+        let mut sweep = if ccw {
+            normalize_angle(a1 - a0)
+        } else {
+            -normalize_angle(a0 - a1)
+        };
+        if sweep == 0.0 {
+            sweep = if ccw { TAU } else { -TAU };
+        }
+        Arc::new(center, radius, a0, sweep)
+    }
+
+    /// DXF bulge: tan(sweep / 4).
+    pub fn bulge(&self) -> f64 {
+        (self.sweep / 4.0).tan()
+    }
+
+    /// Angle of the end point.
+    pub fn end_angle(&self) -> f64 {
+        self.start_angle + self.sweep
+    }
+
+    /// True when the arc runs counter-clockwise.
+    pub fn is_ccw(&self) -> bool {
+        self.sweep > 0.0
+    }
+
+    /// True for a full circle.
+    pub fn is_full_circle(&self) -> bool {
+        self.sweep.abs() >= TAU * (1.0 - 1e-14)
+    }
+
+    /// Angle at parameter `t`.
+    pub fn angle_at(&self, t: f64) -> f64 {
+        self.start_angle + self.sweep * t
+    }
+
+    /// The point at parameter `t`.
+    pub fn point_at(&self, t: f64) -> Point {
+        self.point_at_angle(self.angle_at(t))
+    }
+
+    /// The point of the circle at `angle`.
+    pub fn point_at_angle(&self, angle: f64) -> Point {
+        self.center + Vector::from_angle(angle) * self.radius
+    }
+
+    /// Start point.
+    pub fn start(&self) -> Point {
+        self.point_at_angle(self.start_angle)
+    }
+
+    /// End point.
+    pub fn end(&self) -> Point {
+        if self.is_full_circle() {
+            return self.start();
+        }
+        self.point_at_angle(self.end_angle())
+    }
+
+    /// Unit tangent in the direction of travel at parameter `t`.
+    pub fn tangent_at(&self, t: f64) -> Vector {
+        let radial = Vector::from_angle(self.angle_at(t));
+        if self.sweep >= 0.0 {
+            radial.perp()
+        } else {
+            -radial.perp()
+        }
+    }
+
+    /// Length.
+    pub fn length(&self) -> f64 {
+        self.radius * self.sweep.abs()
+    }
+
+    /// Parameter of the point of the arc's circle in the direction of `angle` from the centre.
+    ///
+    /// Inside the arc this is in [0, 1]; outside, the value is continued past the nearer end
+    /// (negative before the start, above 1 past the end).
+    pub fn param_of_angle(&self, angle: f64) -> f64 {
+        let span = self.sweep.abs();
+        if span == 0.0 {
+            return 0.0;
+        }
+        let delta = if self.sweep > 0.0 {
+            normalize_angle(angle - self.start_angle)
+        } else {
+            normalize_angle(self.start_angle - angle)
+        };
+        if delta <= span || delta - span < TAU - delta {
+            delta / span
+        } else {
+            -(TAU - delta) / span
+        }
+    }
+
+    /// Parameter of the point of the arc nearest in angle to `p` (see [`Arc::param_of_angle`]).
+    pub fn param_of(&self, p: Point) -> f64 {
+        self.param_of_angle((p - self.center).angle())
+    }
+
+    /// True when the direction of `angle` from the centre falls within the arc, allowing
+    /// `tol` millimetres along the circle past either end.
+    pub fn contains_angle(&self, angle: f64, tol: f64) -> bool {
+        let t = self.param_of_angle(angle);
+        let slack = if self.length() > 0.0 {
+            tol / self.length()
+        } else {
+            0.0
+        };
+        t >= -slack && t <= 1.0 + slack
+    }
+
+    /// Bounding box: the end points and every axis extreme the arc passes.
+    pub fn bbox(&self) -> Aabb {
+        let mut b = Aabb::from_points(self.start(), self.end());
+        for k in 0..4 {
+            let a = k as f64 * PI / 2.0;
+            if self.contains_angle(a, 0.0) {
+                b.add_point(self.point_at_angle(a));
+            }
+        }
+        b
+    }
+
+    /// The same arc run the other way.
+    pub fn reversed(&self) -> Arc {
+        Arc::new(self.center, self.radius, self.end_angle(), -self.sweep)
+    }
+
+    /// The piece between parameters `t0` and `t1`.
+    pub fn sub(&self, t0: f64, t1: f64) -> Arc {
+        Arc::new(
+            self.center,
+            self.radius,
+            self.angle_at(t0),
+            self.sweep * (t1 - t0),
+        )
+    }
+
+    /// The two pieces on either side of parameter `t`.
+    pub fn split_at(&self, t: f64) -> (Arc, Arc) {
+        (self.sub(0.0, t), self.sub(t, 1.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bulge_round_trip_both_directions() {
+        for b in [0.3, -0.3, 1.0, -1.0, 2.5, -2.5] {
+            let a = Arc::from_bulge(Point::new(3.0, 1.0), Point::new(-2.0, 4.0), b).unwrap();
+            assert!(a.start().distance(Point::new(3.0, 1.0)) < 1e-12);
+            assert!(a.end().distance(Point::new(-2.0, 4.0)) < 1e-12);
+            assert!((a.bulge() - b).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn param_of_continues_past_the_nearer_end() {
+        let a = Arc::new(Point::ORIGIN, 1.0, 0.0, PI / 2.0);
+        assert!((a.param_of_angle(PI / 4.0) - 0.5).abs() < 1e-12);
+        assert!(a.param_of_angle(-0.1) < 0.0);
+        assert!(a.param_of_angle(PI / 2.0 + 0.1) > 1.0);
+        let cw = a.reversed();
+        assert!((cw.param_of_angle(PI / 2.0)).abs() < 1e-12);
+        assert!((cw.param_of_angle(0.0) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bbox_of_a_half_circle_includes_its_top() {
+        let a = Arc::new(Point::ORIGIN, 1.0, 0.0, PI);
+        let b = a.bbox();
+        assert!((b.max.y - 1.0).abs() < 1e-12 && b.min.y.abs() < 1e-12);
+        let full = Arc::circle(Point::new(5.0, 5.0), 2.0);
+        assert_eq!(full.bbox().width(), 4.0);
+    }
+}

@@ -1,0 +1,125 @@
+//! Closest points and distances between points, lines and arcs.
+
+use super::{intersect, Arc, Line, Point, Segment};
+
+/// Parameter of the point of `seg` nearest to `p`.
+pub fn closest_param(seg: &Segment, p: Point) -> f64 {
+    match seg {
+        Segment::Line(l) => l.param_of(p).clamp(0.0, 1.0),
+        Segment::Arc(a) => arc_closest_param(a, p),
+    }
+}
+
+fn arc_closest_param(a: &Arc, p: Point) -> f64 {
+    let v = p - a.center;
+    if v.length_sq() == 0.0 {
+        return 0.0; // every point of the arc is equally near the centre
+    }
+    let t = a.param_of_angle(v.angle());
+    if (0.0..=1.0).contains(&t) {
+        return t;
+    }
+    if a.start().distance_sq(p) <= a.end().distance_sq(p) {
+        0.0
+    } else {
+        1.0
+    }
+}
+
+/// The point of `seg` nearest to `p`.
+///
+/// ```
+/// use pocketeer::geom::{closest_point, Line, Point, Segment};
+/// let s = Segment::Line(Line::new(Point::new(0.0, 0.0), Point::new(10.0, 0.0)));
+/// assert_eq!(closest_point(&s, Point::new(3.0, 5.0)), Point::new(3.0, 0.0));
+/// assert_eq!(closest_point(&s, Point::new(-3.0, 5.0)), Point::new(0.0, 0.0));
+/// ```
+pub fn closest_point(seg: &Segment, p: Point) -> Point {
+    seg.point_at(closest_param(seg, p))
+}
+
+/// Distance from `p` to `seg`.
+pub fn point_distance(seg: &Segment, p: Point) -> f64 {
+    match seg {
+        Segment::Line(l) => line_point_distance(l, p),
+        Segment::Arc(a) => {
+            let v = p - a.center;
+            if v.length_sq() > 0.0 && a.contains_angle(v.angle(), 0.0) {
+                (v.length() - a.radius).abs()
+            } else {
+                closest_point(seg, p).distance(p)
+            }
+        }
+    }
+}
+
+fn line_point_distance(l: &Line, p: Point) -> f64 {
+    l.point_at(l.param_of(p).clamp(0.0, 1.0)).distance(p)
+}
+
+/// Distance between two segments, with the nearest point of each.
+///
+/// ```
+/// use pocketeer::geom::{segment_distance, Arc, Line, Point, Segment};
+/// let circle = Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 1.0));
+/// let line = Segment::Line(Line::new(Point::new(-5.0, 3.0), Point::new(5.0, 3.0)));
+/// let (d, on_circle, on_line) = segment_distance(&circle, &line, 1e-9);
+/// assert!((d - 2.0).abs() < 1e-12);
+/// assert!(on_circle.distance(Point::new(0.0, 1.0)) < 1e-12);
+/// assert!(on_line.distance(Point::new(0.0, 3.0)) < 1e-12);
+/// ```
+pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Point) {
+    if let Some(i) = intersect(a, b, eps).iter().next() {
+        let p = match i {
+            intersect::Intersection::Point { point, .. } => point,
+            intersect::Intersection::Overlap { a: span, .. } => a.point_at(span.0),
+        };
+        return (0.0, p, p);
+    }
+    let mut best = (f64::INFINITY, Point::ORIGIN, Point::ORIGIN);
+    let mut consider = |pa: Point, pb: Point| {
+        let d = pa.distance(pb);
+        if d < best.0 {
+            best = (d, pa, pb);
+        }
+    };
+    // End points against the other segment.
+    for p in [a.start(), a.end()] {
+        consider(p, closest_point(b, p));
+    }
+    for p in [b.start(), b.end()] {
+        consider(closest_point(a, p), p);
+    }
+    // Interior-to-interior minima lie on a normal through an arc's centre.
+    for (x, y, flip) in [(a, b, false), (b, a, true)] {
+        if let Segment::Arc(arc) = x {
+            for q in interior_candidates(arc, y) {
+                let on_y = closest_point(y, q);
+                if flip {
+                    consider(on_y, q);
+                } else {
+                    consider(q, on_y);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// Points of `arc` where an interior minimum of the distance to `other` can be.
+fn interior_candidates(arc: &Arc, other: &Segment) -> Vec<Point> {
+    let target = match other {
+        // The foot of the centre on the line: the arc point towards it is nearest to the line.
+        Segment::Line(l) => l.point_at(l.param_of(arc.center).clamp(0.0, 1.0)),
+        Segment::Arc(o) => o.center,
+    };
+    let v = target - arc.center;
+    let Some(u) = v.normalized() else {
+        return Vec::new();
+    };
+    [u, -u]
+        .into_iter()
+        .filter(|d| arc.contains_angle(d.angle(), 0.0))
+        .map(|d| arc.center + d * arc.radius)
+        .collect()
+}

@@ -1,0 +1,454 @@
+//! Intersections of lines and arcs: crossings, tangencies and overlapping spans.
+//!
+//! Every test is in vector form (no slopes), and every "equal" or "on" decision uses the
+//! geometric epsilon `eps` in millimetres, so vertical lines and tiny or huge coordinates are
+//! treated alike.
+
+use super::{Arc, Line, Point, Segment};
+use std::f64::consts::TAU;
+
+/// One place where two segments meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Intersection {
+    /// The segments meet at one point (crossing or touching), at parameter `ta` on the first
+    /// and `tb` on the second.
+    Point {
+        /// Where they meet.
+        point: Point,
+        /// Parameter on the first segment.
+        ta: f64,
+        /// Parameter on the second segment.
+        tb: f64,
+    },
+    /// The segments share a span of positive length (collinear lines or co-circular arcs):
+    /// `a` = (t0, t1) with t0 < t1 on the first segment, `b` = the parameters of the same two
+    /// points on the second (decreasing when the second runs the other way).
+    Overlap {
+        /// Parameter range on the first segment.
+        a: (f64, f64),
+        /// Parameters of the same points on the second segment.
+        b: (f64, f64),
+    },
+}
+
+impl Intersection {
+    /// The same intersection seen from the other segment.
+    pub fn swapped(self) -> Intersection {
+        match self {
+            Intersection::Point { point, ta, tb } => Intersection::Point {
+                point,
+                ta: tb,
+                tb: ta,
+            },
+            Intersection::Overlap { a, b } => {
+                if b.0 <= b.1 {
+                    Intersection::Overlap { a: b, b: a }
+                } else {
+                    Intersection::Overlap {
+                        a: (b.1, b.0),
+                        b: (a.1, a.0),
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// At most three intersections, stored inline: two segments of these kinds never meet more often.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Intersections {
+    items: [Option<Intersection>; 3],
+    len: usize,
+}
+
+impl Intersections {
+    fn push(&mut self, i: Intersection) {
+        if self.len < self.items.len() {
+            self.items[self.len] = Some(i);
+            self.len += 1;
+        }
+    }
+
+    /// Number of intersections.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when the segments do not meet.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The intersections in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = Intersection> + '_ {
+        self.items[..self.len].iter().flatten().copied()
+    }
+
+    fn swapped(self) -> Intersections {
+        let mut out = Intersections::default();
+        for i in self.iter() {
+            out.push(i.swapped());
+        }
+        out
+    }
+}
+
+/// All intersections of `a` and `b`, parameters given on each.
+///
+/// ```
+/// use pocketeer::geom::{intersect, Intersection, Line, Point, Segment};
+/// let a = Segment::Line(Line::new(Point::new(0.0, 0.0), Point::new(2.0, 2.0)));
+/// let b = Segment::Line(Line::new(Point::new(0.0, 2.0), Point::new(2.0, 0.0)));
+/// let hits = intersect(&a, &b, 1e-9);
+/// assert_eq!(hits.len(), 1);
+/// match hits.iter().next().unwrap() {
+///     Intersection::Point { point, ta, tb } => {
+///         assert!(point.distance(Point::new(1.0, 1.0)) < 1e-12);
+///         assert!((ta - 0.5).abs() < 1e-12 && (tb - 0.5).abs() < 1e-12);
+///     }
+///     _ => unreachable!(),
+/// };
+/// ```
+pub fn intersect(a: &Segment, b: &Segment, eps: f64) -> Intersections {
+    match (a, b) {
+        (Segment::Line(l1), Segment::Line(l2)) => line_line(l1, l2, eps),
+        (Segment::Line(l), Segment::Arc(c)) => line_arc(l, c, eps),
+        (Segment::Arc(c), Segment::Line(l)) => line_arc(l, c, eps).swapped(),
+        (Segment::Arc(c1), Segment::Arc(c2)) => arc_arc(c1, c2, eps),
+    }
+}
+
+fn clamp01(t: f64) -> f64 {
+    t.clamp(0.0, 1.0)
+}
+
+/// Intersections of two lines.
+pub fn line_line(l1: &Line, l2: &Line, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    let (len1, len2) = (l1.length(), l2.length());
+    if len1 <= eps || len2 <= eps {
+        // A degenerate line is a point: it meets the other where it lies on it.
+        let (p, other, p_on_first) = if len1 <= len2 {
+            (l1.start.midpoint(l1.end), l2, true)
+        } else {
+            (l2.start.midpoint(l2.end), l1, false)
+        };
+        let t = clamp01(other.param_of(p));
+        if other.point_at(t).distance(p) <= eps {
+            let (ta, tb) = if p_on_first { (0.0, t) } else { (t, 0.0) };
+            out.push(Intersection::Point { point: p, ta, tb });
+        }
+        return out;
+    }
+    // Signed distances of each line's ends from the other line.
+    let hc = l1.signed_distance(l2.start);
+    let hd = l1.signed_distance(l2.end);
+    let ha = l2.signed_distance(l1.start);
+    let hb = l2.signed_distance(l1.end);
+    let collinear = (hc.abs() <= eps && hd.abs() <= eps) || (ha.abs() <= eps && hb.abs() <= eps);
+    if collinear {
+        return collinear_lines(l1, l2, len1, eps);
+    }
+    if (hc > eps && hd > eps)
+        || (hc < -eps && hd < -eps)
+        || (ha > eps && hb > eps)
+        || (ha < -eps && hb < -eps)
+    {
+        return out;
+    }
+    // Where l2 crosses the line of l1, snapped to an end that touches.
+    let u = if hc.abs() <= eps {
+        0.0
+    } else if hd.abs() <= eps {
+        1.0
+    } else {
+        clamp01(hc / (hc - hd))
+    };
+    let t = if ha.abs() <= eps {
+        0.0
+    } else if hb.abs() <= eps {
+        1.0
+    } else {
+        clamp01(ha / (ha - hb))
+    };
+    let pa = l1.point_at(t);
+    let pb = l2.point_at(u);
+    if pa.distance(pb) <= 2.0 * eps {
+        out.push(Intersection::Point {
+            point: pa.midpoint(pb),
+            ta: t,
+            tb: u,
+        });
+    }
+    out
+}
+
+fn collinear_lines(l1: &Line, l2: &Line, len1: f64, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    let tc = l1.param_of(l2.start);
+    let td = l1.param_of(l2.end);
+    let lo = tc.min(td).max(0.0);
+    let hi = tc.max(td).min(1.0);
+    let slack = eps / len1;
+    if hi < lo - slack {
+        return out;
+    }
+    if (hi - lo) * len1 <= eps {
+        let t = clamp01(0.5 * (lo + hi));
+        let p = l1.point_at(t);
+        out.push(Intersection::Point {
+            point: p,
+            ta: t,
+            tb: clamp01(l2.param_of(p)),
+        });
+    } else {
+        let b0 = clamp01(l2.param_of(l1.point_at(lo)));
+        let b1 = clamp01(l2.param_of(l1.point_at(hi)));
+        out.push(Intersection::Overlap {
+            a: (lo, hi),
+            b: (b0, b1),
+        });
+    }
+    out
+}
+
+/// Intersections of a line (first) and an arc (second).
+pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    let len = l.length();
+    if len <= eps {
+        let p = l.start.midpoint(l.end);
+        if (p.distance(c.center) - c.radius).abs() <= eps && c.contains_angle((p - c.center).angle(), eps) {
+            out.push(Intersection::Point {
+                point: p,
+                ta: 0.0,
+                tb: clamp01(c.param_of(p)),
+            });
+        }
+        return out;
+    }
+    let s = l.param_of(c.center);
+    let h = l.signed_distance(c.center);
+    let r = c.radius;
+    if h.abs() > r + eps {
+        return out;
+    }
+    let slack = eps / len;
+    let mut candidates = [None, None];
+    if h.abs() >= r - eps {
+        candidates[0] = Some(s);
+    } else {
+        let k = (r * r - h * h).max(0.0).sqrt() / len;
+        candidates[0] = Some(s - k);
+        candidates[1] = Some(s + k);
+    }
+    for t in candidates.into_iter().flatten() {
+        if t < -slack || t > 1.0 + slack {
+            continue;
+        }
+        let t = clamp01(t);
+        let p = l.point_at(t);
+        let angle = (p - c.center).angle();
+        if !c.contains_angle(angle, eps) {
+            continue;
+        }
+        // Clamping to the line's end moves the point by at most eps along the line.
+        if (p.distance(c.center) - r).abs() <= 2.0 * eps {
+            out.push(Intersection::Point {
+                point: p,
+                ta: t,
+                tb: clamp01(c.param_of_angle(angle)),
+            });
+        }
+    }
+    out
+}
+
+/// Intersections of two arcs.
+pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    let v = c2.center - c1.center;
+    let d = v.length();
+    let (r1, r2) = (c1.radius, c2.radius);
+    if d <= eps && (r1 - r2).abs() <= eps {
+        return cocircular(c1, c2, eps);
+    }
+    if d <= eps || d > r1 + r2 + eps || d < (r1 - r2).abs() - eps {
+        return out;
+    }
+    let u = v / d;
+    let mut pts = [None, None];
+    if (d - (r1 + r2)).abs() <= eps || (d - (r1 - r2).abs()).abs() <= eps {
+        // Tangent: the touching point lies on the line of centres.
+        let dir = if (d - (r1 + r2)).abs() <= eps || r1 >= r2 {
+            u
+        } else {
+            -u
+        };
+        pts[0] = Some(c1.center + dir * r1);
+    } else {
+        let a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+        let h = (r1 * r1 - a * a).max(0.0).sqrt();
+        let base = c1.center + u * a;
+        pts[0] = Some(base + u.perp() * h);
+        pts[1] = Some(base - u.perp() * h);
+    }
+    for p in pts.into_iter().flatten() {
+        let a1 = (p - c1.center).angle();
+        let a2 = (p - c2.center).angle();
+        if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {
+            out.push(Intersection::Point {
+                point: p,
+                ta: clamp01(c1.param_of_angle(a1)),
+                tb: clamp01(c2.param_of_angle(a2)),
+            });
+        }
+    }
+    out
+}
+
+/// The counter-clockwise angle interval `[lo, lo + len]` an arc covers.
+fn ccw_interval(c: &Arc) -> (f64, f64) {
+    let len = c.sweep.abs().min(TAU);
+    let lo = if c.sweep >= 0.0 {
+        c.start_angle
+    } else {
+        c.start_angle + c.sweep
+    };
+    (lo, len)
+}
+
+/// Parameter on `c` of the angle `theta`, given in the unwrapped frame where `c` covers
+/// `[lo, lo + len]`.
+fn param_in_frame(c: &Arc, lo: f64, len: f64, theta: f64) -> f64 {
+    let f = if len > 0.0 { (theta - lo) / len } else { 0.0 };
+    clamp01(if c.sweep >= 0.0 { f } else { 1.0 - f })
+}
+
+fn cocircular(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    let r = 0.5 * (c1.radius + c2.radius);
+    let ang_eps = eps / r;
+    let (lo1, len1) = ccw_interval(c1);
+    let (lo2, len2) = ccw_interval(c2);
+    let base = lo1 + (lo2 - lo1).rem_euclid(TAU);
+    let mut points: Vec<(f64, f64, f64)> = Vec::new();
+    for shift in [base - TAU, base] {
+        let lo = lo1.max(shift);
+        let hi = (lo1 + len1).min(shift + len2);
+        if hi < lo - ang_eps {
+            continue;
+        }
+        if (hi - lo) * r > eps {
+            let a = (
+                param_in_frame(c1, lo1, len1, lo),
+                param_in_frame(c1, lo1, len1, hi),
+            );
+            let b = (
+                param_in_frame(c2, shift, len2, lo),
+                param_in_frame(c2, shift, len2, hi),
+            );
+            let (a, b) = if a.0 <= a.1 {
+                (a, b)
+            } else {
+                ((a.1, a.0), (b.1, b.0))
+            };
+            out.push(Intersection::Overlap { a, b });
+        } else {
+            let m = 0.5 * (lo + hi);
+            let ta = param_in_frame(c1, lo1, len1, m);
+            let tb = param_in_frame(c2, shift, len2, m);
+            points.push((m, ta, tb));
+        }
+    }
+    // Touching points that coincide with an overlap's end or with each other are one point.
+    for (m, ta, tb) in points {
+        let p = c1.point_at_angle(m);
+        let dup = out.iter().any(|i| match i {
+            Intersection::Point { point, .. } => point.distance(p) <= 2.0 * eps,
+            Intersection::Overlap { a, .. } => {
+                c1.point_at(a.0).distance(p) <= 2.0 * eps || c1.point_at(a.1).distance(p) <= 2.0 * eps
+            }
+        });
+        if !dup {
+            out.push(Intersection::Point { point: p, ta, tb });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    const EPS: f64 = 1e-9;
+
+    fn line(x0: f64, y0: f64, x1: f64, y1: f64) -> Segment {
+        Segment::Line(Line::new(Point::new(x0, y0), Point::new(x1, y1)))
+    }
+
+    #[test]
+    fn vertical_and_horizontal_lines_cross() {
+        let hits = intersect(&line(5.0, -1.0, 5.0, 1.0), &line(0.0, 0.0, 10.0, 0.0), EPS);
+        assert_eq!(hits.len(), 1);
+    }
+
+    #[test]
+    fn collinear_lines_overlap_with_matching_parameters() {
+        let hits = intersect(&line(0.0, 0.0, 10.0, 0.0), &line(12.0, 0.0, 4.0, 0.0), EPS);
+        let v: Vec<_> = hits.iter().collect();
+        assert_eq!(v.len(), 1);
+        match v[0] {
+            Intersection::Overlap { a, b } => {
+                assert!((a.0 - 0.4).abs() < 1e-12 && (a.1 - 1.0).abs() < 1e-12);
+                assert!((b.0 - 1.0).abs() < 1e-12 && (b.1 - 0.25).abs() < 1e-12);
+            }
+            _ => panic!("expected overlap"),
+        }
+    }
+
+    #[test]
+    fn collinear_lines_touching_end_to_end_meet_in_a_point() {
+        let hits = intersect(&line(0.0, 0.0, 1.0, 0.0), &line(1.0, 0.0, 2.0, 0.0), EPS);
+        assert!(matches!(hits.iter().next(), Some(Intersection::Point { .. })));
+        assert!(intersect(&line(0.0, 0.0, 1.0, 0.0), &line(1.1, 0.0, 2.0, 0.0), EPS).is_empty());
+    }
+
+    #[test]
+    fn tangent_line_touches_circle_once() {
+        let c = Segment::Arc(Arc::circle(Point::ORIGIN, 2.0));
+        let hits = intersect(&line(-5.0, 2.0, 5.0, 2.0), &c, EPS);
+        assert_eq!(hits.len(), 1);
+        let hits = intersect(&c, &line(-5.0, 1.0, 5.0, 1.0), EPS);
+        assert_eq!(hits.len(), 2);
+    }
+
+    #[test]
+    fn arcs_tangent_inside_and_outside() {
+        let a = Segment::Arc(Arc::circle(Point::ORIGIN, 2.0));
+        let outside = Segment::Arc(Arc::circle(Point::new(3.0, 0.0), 1.0));
+        let inside = Segment::Arc(Arc::circle(Point::new(1.0, 0.0), 1.0));
+        assert_eq!(intersect(&a, &outside, EPS).len(), 1);
+        assert_eq!(intersect(&a, &inside, EPS).len(), 1);
+    }
+
+    #[test]
+    fn cocircular_arcs_overlap_in_two_spans() {
+        let a = Segment::Arc(Arc::new(Point::ORIGIN, 1.0, 0.0, 1.5 * PI));
+        let b = Segment::Arc(Arc::new(Point::ORIGIN, 1.0, PI, 1.5 * PI));
+        let spans = intersect(&a, &b, EPS)
+            .iter()
+            .filter(|i| matches!(i, Intersection::Overlap { .. }))
+            .count();
+        assert_eq!(spans, 2);
+        let opposite = Segment::Arc(Arc::new(Point::ORIGIN, 1.0, PI / 2.0, -PI / 4.0));
+        match intersect(&a, &opposite, EPS).iter().next() {
+            Some(Intersection::Overlap { a, b }) => {
+                assert!((a.0 - 1.0 / 6.0).abs() < 1e-12 && (a.1 - 1.0 / 3.0).abs() < 1e-12);
+                assert!((b.0 - 1.0).abs() < 1e-12 && b.1.abs() < 1e-12);
+            }
+            other => panic!("expected overlap, got {other:?}"),
+        }
+    }
+}

@@ -1,0 +1,22 @@
+//! The exact geometry kernel: points, lines, arcs, their intersections and distances, and
+//! closed contours. Everything downstream is built from these types.
+
+mod aabb;
+mod arc;
+mod contour;
+pub mod distance;
+pub mod intersect;
+mod line;
+mod point;
+mod segment;
+mod tolerance;
+
+pub use aabb::Aabb;
+pub use arc::{normalize_angle, Arc};
+pub use contour::{signed_area, winding_number, Contour};
+pub use distance::{closest_param, closest_point, point_distance, segment_distance};
+pub use intersect::{intersect, Intersection, Intersections};
+pub use line::Line;
+pub use point::{Point, Vector};
+pub use segment::Segment;
+pub use tolerance::{Tolerance, DEFAULT_JOIN_TOLERANCE};
