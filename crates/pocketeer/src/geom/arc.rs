@@ -98,6 +98,19 @@ impl Arc {
         (self.sweep / 4.0).tan()
     }
 
+    /// Largest distance between the arc and its chord (for sweeps up to a half turn; larger
+    /// arcs are far from flat anyway).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Arc, Point};
+    /// let half = Arc::new(Point::new(0.0, 0.0), 2.0, 0.0, std::f64::consts::PI);
+    /// assert!((half.sagitta() - 2.0).abs() < 1e-12);
+    /// ```
+    pub fn sagitta(&self) -> f64 {
+        let s = (self.sweep.abs().min(std::f64::consts::PI) / 4.0).sin();
+        2.0 * self.radius * s * s
+    }
+
     /// Angle of the end point.
     pub fn end_angle(&self) -> f64 {
         self.start_angle + self.sweep

@@ -238,7 +238,7 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
     if h.abs() >= r - eps {
         candidates[0] = Some(s);
     } else {
-        let k = (r * r - h * h).max(0.0).sqrt() / len;
+        let k = ((r - h.abs()) * (r + h.abs())).max(0.0).sqrt() / len;
         candidates[0] = Some(s - k);
         candidates[1] = Some(s + k);
     }
@@ -287,8 +287,9 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
         };
         pts[0] = Some(c1.center + dir * r1);
     } else {
-        let a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
-        let h = (r1 * r1 - a * a).max(0.0).sqrt();
+        // Written to avoid cancellation between large squared radii.
+        let a = 0.5 * (d + (r1 - r2) * (r1 + r2) / d);
+        let h = ((r1 - a) * (r1 + a)).max(0.0).sqrt();
         let base = c1.center + u * a;
         pts[0] = Some(base + u.perp() * h);
         pts[1] = Some(base - u.perp() * h);

@@ -1,0 +1,49 @@
+//! Lengths on the command line: a number with an optional `mm` or `in` suffix; a bare number is
+//! millimetres, whatever the drawing's units.
+
+/// Parses `3`, `3mm`, `0.125in`, `0.125 in` into millimetres.
+pub fn parse_length(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let (num, factor) = if let Some(n) = t.strip_suffix("mm") {
+        (n, 1.0)
+    } else if let Some(n) = t.strip_suffix("in") {
+        (n, 25.4)
+    } else if let Some(n) = t.strip_suffix('"') {
+        (n, 25.4)
+    } else {
+        (t, 1.0)
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a length (examples: 3, 3mm, 0.125in)"))?;
+    if !v.is_finite() {
+        return Err(format!("'{s}' is not a finite length"));
+    }
+    Ok(v * factor)
+}
+
+/// Parses a non-negative length.
+pub fn parse_nonneg_length(s: &str) -> Result<f64, String> {
+    let v = parse_length(s)?;
+    if v < 0.0 {
+        return Err(format!("'{s}' must not be negative"));
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suffixes() {
+        assert_eq!(parse_length("3").unwrap(), 3.0);
+        assert_eq!(parse_length("3mm").unwrap(), 3.0);
+        assert_eq!(parse_length("0.125in").unwrap(), 3.175);
+        assert_eq!(parse_length(" 1 in").unwrap(), 25.4);
+        assert!(parse_length("3cm").is_err());
+        assert!(parse_length("nan").is_err());
+        assert!(parse_nonneg_length("-1").is_err());
+    }
+}

@@ -1,0 +1,246 @@
+//! What `inspect` prints, as one serialisable value rendered as text or JSON.
+
+use pocketeer::geom::Point;
+use pocketeer::import::error::fmt_point;
+use pocketeer::Analysis;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// The inspection report.
+#[derive(Serialize)]
+pub struct Report {
+    file: String,
+    format: &'static str,
+    units: String,
+    declared_units: Option<String>,
+    layers: Vec<LayerRow>,
+    entities: BTreeMap<String, usize>,
+    elements: usize,
+    contours: Vec<ContourRow>,
+    open_chains: Vec<OpenRow>,
+    pockets: Vec<PocketRow>,
+    warnings: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct LayerRow {
+    name: String,
+    elements: usize,
+}
+
+#[derive(Serialize)]
+struct ContourRow {
+    layer: String,
+    closed: bool,
+    level: usize,
+    role: &'static str,
+    area_mm2: f64,
+    elements: usize,
+}
+
+#[derive(Serialize)]
+struct OpenRow {
+    layer: String,
+    elements: usize,
+    start: Point,
+    end: Point,
+}
+
+#[derive(Serialize)]
+struct PocketRow {
+    area_mm2: f64,
+    boundary_area_mm2: f64,
+    boundary_elements: usize,
+    islands: Vec<IslandRow>,
+}
+
+#[derive(Serialize)]
+struct IslandRow {
+    area_mm2: f64,
+    elements: usize,
+}
+
+/// Rounds to three decimals, as the report shows areas.
+fn r3(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+impl Report {
+    /// Builds the report of `a` for file `file`.
+    pub fn new(file: &str, a: &Analysis) -> Report {
+        let d = &a.drawing;
+        let layer_name = |i: usize| d.layers.get(i).cloned().unwrap_or_default();
+        let mut per_layer = vec![0usize; d.layers.len()];
+        for e in &d.elements {
+            if let Some(n) = per_layer.get_mut(e.layer) {
+                *n += 1;
+            }
+        }
+        let contours = a
+            .chains
+            .contours
+            .iter()
+            .zip(&a.regions.levels)
+            .map(|(c, &level)| ContourRow {
+                layer: layer_name(c.layer),
+                closed: true,
+                level,
+                role: if level % 2 == 0 {
+                    "pocket boundary"
+                } else {
+                    "island"
+                },
+                area_mm2: r3(c.contour.signed_area().abs()),
+                elements: c.contour.segments.len(),
+            })
+            .collect();
+        let open_chains = a
+            .chains
+            .open
+            .iter()
+            .map(|o| OpenRow {
+                layer: layer_name(o.layer),
+                elements: o.elements.len(),
+                start: o.start,
+                end: o.end,
+            })
+            .collect();
+        let pockets = a
+            .regions
+            .pockets
+            .iter()
+            .map(|p| PocketRow {
+                area_mm2: r3(p.area()),
+                boundary_area_mm2: r3(p.boundary.signed_area()),
+                boundary_elements: p.boundary.segments.len(),
+                islands: p
+                    .islands
+                    .iter()
+                    .map(|i| IslandRow {
+                        area_mm2: r3(i.signed_area().abs()),
+                        elements: i.segments.len(),
+                    })
+                    .collect(),
+            })
+            .collect();
+        let mut warnings = d.warnings.clone();
+        let ch = &a.chains;
+        if ch.duplicates_dropped > 0 {
+            warnings.push(format!("{} duplicate element(s) dropped", ch.duplicates_dropped));
+        }
+        if ch.zero_length_dropped > 0 {
+            warnings.push(format!(
+                "{} zero-length element(s) dropped",
+                ch.zero_length_dropped
+            ));
+        }
+        warnings.extend(ch.warnings.iter().cloned());
+        for o in &ch.open {
+            warnings.push(format!(
+                "open chain of {} element(s) on layer '{}' ignored: free ends at {} and {}",
+                o.elements.len(),
+                layer_name(o.layer),
+                fmt_point(o.start),
+                fmt_point(o.end)
+            ));
+        }
+        warnings.extend(a.regions.warnings.iter().cloned());
+        Report {
+            file: file.to_owned(),
+            format: if d.binary { "binary DXF" } else { "ASCII DXF" },
+            units: d.units.to_string(),
+            declared_units: d.declared_units.map(|u| u.to_string()),
+            layers: d
+                .layers
+                .iter()
+                .zip(per_layer)
+                .map(|(n, e)| LayerRow {
+                    name: n.clone(),
+                    elements: e,
+                })
+                .collect(),
+            entities: d.entity_counts.clone(),
+            elements: d.elements.len(),
+            contours,
+            open_chains,
+            pockets,
+            warnings,
+        }
+    }
+
+    /// The report as readable text.
+    pub fn to_text(&self) -> String {
+        let mut s = String::new();
+        let declared = self
+            .declared_units
+            .as_deref()
+            .map_or("none declared".to_owned(), |u| format!("declared {u}"));
+        let _ = writeln!(s, "file      {} ({})", self.file, self.format);
+        let _ = writeln!(s, "units     {} ({declared}); figures below in mm", self.units);
+        let layers: Vec<String> = self
+            .layers
+            .iter()
+            .map(|l| format!("{} ({})", l.name, l.elements))
+            .collect();
+        let _ = writeln!(s, "layers    {}", layers.join(", "));
+        let ents: Vec<String> = self.entities.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        let _ = writeln!(s, "entities  {} → {} elements", ents.join(", "), self.elements);
+        let _ = writeln!(
+            s,
+            "contours  {} closed, {} open",
+            self.contours.len(),
+            self.open_chains.len()
+        );
+        for (i, c) in self.contours.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "  {:>3}  closed  level {}  {:<15}  area {:>14.3} mm²  {:>5} elements  layer {}",
+                i + 1,
+                c.level,
+                c.role,
+                c.area_mm2,
+                c.elements,
+                c.layer
+            );
+        }
+        for o in &self.open_chains {
+            let _ = writeln!(
+                s,
+                "       open    {} elements  layer {}  free ends {} and {}",
+                o.elements,
+                o.layer,
+                fmt_point(o.start),
+                fmt_point(o.end)
+            );
+        }
+        let _ = writeln!(s, "pockets   {}", self.pockets.len());
+        for (i, p) in self.pockets.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "  {:>3}  area {:.3} mm² (boundary {:.3} mm², {} elements), {} island(s)",
+                i + 1,
+                p.area_mm2,
+                p.boundary_area_mm2,
+                p.boundary_elements,
+                p.islands.len()
+            );
+            for isl in &p.islands {
+                let _ = writeln!(
+                    s,
+                    "         island  area {:.3} mm²  {} elements",
+                    isl.area_mm2, isl.elements
+                );
+            }
+        }
+        if self.warnings.is_empty() {
+            let _ = writeln!(s, "warnings  none");
+        } else {
+            let _ = writeln!(s, "warnings  {}", self.warnings.len());
+            for w in &self.warnings {
+                let _ = writeln!(s, "  - {w}");
+            }
+        }
+        s
+    }
+}

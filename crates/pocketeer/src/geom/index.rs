@@ -1,0 +1,84 @@
+//! A spatial index over bounding boxes (an R*-tree from the `rstar` crate), for finding the
+//! pairs of elements that may touch without testing every pair.
+
+use super::{Aabb, Point};
+use rstar::{primitives::GeomWithData, primitives::Rectangle, RTree, AABB};
+
+type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;
+
+/// Boxes indexed by their position in the slice they were built from.
+///
+/// ```
+/// use pocketeer::geom::{Aabb, BoxIndex, Point};
+/// let boxes = [
+///     Aabb::from_points(Point::new(0.0, 0.0), Point::new(2.0, 2.0)),
+///     Aabb::from_points(Point::new(1.0, 1.0), Point::new(3.0, 3.0)),
+///     Aabb::from_points(Point::new(5.0, 5.0), Point::new(6.0, 6.0)),
+/// ];
+/// let index = BoxIndex::new(&boxes);
+/// assert_eq!(index.pairs(), vec![(0, 1)]);
+/// assert_eq!(index.at_point(Point::new(5.5, 5.5)).collect::<Vec<_>>(), vec![2]);
+/// ```
+pub struct BoxIndex {
+    tree: RTree<Entry>,
+}
+
+fn envelope(b: &Aabb) -> AABB<[f64; 2]> {
+    AABB::from_corners([b.min.x, b.min.y], [b.max.x, b.max.y])
+}
+
+impl BoxIndex {
+    /// Indexes `boxes` (empty boxes are left out).
+    pub fn new(boxes: &[Aabb]) -> BoxIndex {
+        let entries = boxes
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| !b.is_empty())
+            .map(|(i, b)| {
+                GeomWithData::new(Rectangle::from_corners([b.min.x, b.min.y], [b.max.x, b.max.y]), i)
+            })
+            .collect();
+        BoxIndex {
+            tree: RTree::bulk_load(entries),
+        }
+    }
+
+    /// Indices of the boxes that intersect `b`.
+    pub fn intersecting<'a>(&'a self, b: &Aabb) -> impl Iterator<Item = usize> + 'a {
+        self.tree
+            .locate_in_envelope_intersecting(&envelope(b))
+            .map(|e| e.data)
+    }
+
+    /// Indices of the boxes that contain `p`.
+    pub fn at_point(&self, p: Point) -> impl Iterator<Item = usize> + '_ {
+        self.tree.locate_all_at_point(&[p.x, p.y]).map(|e| e.data)
+    }
+
+    /// Every pair `(i, j)`, `i < j`, of intersecting boxes, sorted.
+    pub fn pairs(&self) -> Vec<(usize, usize)> {
+        let mut out: Vec<(usize, usize)> = self
+            .tree
+            .iter()
+            .flat_map(|a| {
+                let i = a.data;
+                self.tree
+                    .locate_in_envelope_intersecting(&a.geom().envelope_of())
+                    .filter(move |b| b.data > i)
+                    .map(move |b| (i, b.data))
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+}
+
+trait EnvelopeOf {
+    fn envelope_of(&self) -> AABB<[f64; 2]>;
+}
+
+impl EnvelopeOf for Rectangle<[f64; 2]> {
+    fn envelope_of(&self) -> AABB<[f64; 2]> {
+        AABB::from_corners(self.lower(), self.upper())
+    }
+}

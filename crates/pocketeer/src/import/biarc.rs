@@ -1,0 +1,147 @@
+//! Approximation of smooth curves (ellipses, splines) by biarcs: pairs of tangent-continuous
+//! circular arcs, subdivided until every sampled curve point is within the tolerance.
+
+use crate::geom::{point_distance, Arc, Line, Point, Segment, Vector};
+
+/// Number of curve samples checked against each biarc.
+const SAMPLES: usize = 16;
+/// Subdivision depth limit: 2^24 pieces is far beyond any drawing.
+const MAX_DEPTH: u32 = 24;
+
+/// Appends to `out` lines and arcs that follow the curve `eval` (point and derivative at t) from
+/// `t0` to `t1` within `tolerance`.
+pub fn fit(eval: &dyn Fn(f64) -> (Point, Vector), t0: f64, t1: f64, tolerance: f64, out: &mut Vec<Segment>) {
+    fit_rec(eval, t0, t1, tolerance, 0, out);
+}
+
+fn fit_rec(
+    eval: &dyn Fn(f64) -> (Point, Vector),
+    t0: f64,
+    t1: f64,
+    tol: f64,
+    depth: u32,
+    out: &mut Vec<Segment>,
+) {
+    let (p0, d0) = eval(t0);
+    let (p1, d1) = eval(t1);
+    if p0.distance(p1) <= tol * 1e-6 {
+        return; // a negligible piece: the chain closes the gap within the join tolerance
+    }
+    let candidate = match (d0.normalized(), d1.normalized()) {
+        (Some(a), Some(b)) => biarc(p0, a, p1, b),
+        _ => None,
+    };
+    let fits = |segs: &[Segment]| {
+        (1..SAMPLES).all(|i| {
+            let p = eval(t0 + (t1 - t0) * i as f64 / SAMPLES as f64).0;
+            segs.iter()
+                .map(|s| point_distance(s, p))
+                .fold(f64::INFINITY, f64::min)
+                <= tol
+        })
+    };
+    match candidate {
+        Some(segs) if depth >= MAX_DEPTH || fits(&segs) => out.extend(segs),
+        None if depth >= MAX_DEPTH => out.push(Segment::Line(Line::new(p0, p1))),
+        _ => {
+            let tm = 0.5 * (t0 + t1);
+            fit_rec(eval, t0, tm, tol, depth + 1, out);
+            fit_rec(eval, tm, t1, tol, depth + 1, out);
+        }
+    }
+}
+
+/// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`).
+pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Vec<Segment>> {
+    let v = p1 - p0;
+    let vv = v.length_sq();
+    if vv == 0.0 {
+        return None;
+    }
+    let t = t0 + t1;
+    let denom = 2.0 * (1.0 - t0.dot(t1));
+    let d = if denom.abs() < 1e-12 {
+        // Parallel end tangents: a straight piece, or the symmetric S-curve.
+        if v.cross(t0).abs() <= 1e-12 * vv.sqrt() && v.dot(t0) > 0.0 {
+            return Some(vec![Segment::Line(Line::new(p0, p1))]);
+        }
+        let vt = v.dot(t1);
+        if vt.abs() < 1e-300 {
+            return None;
+        }
+        vv / (4.0 * vt)
+    } else {
+        let vt = v.dot(t);
+        (-vt + (vt * vt + denom * vv).sqrt()) / denom
+    };
+    if d.is_nan() || d <= 0.0 || !d.is_finite() {
+        return None;
+    }
+    let j = Point::new(
+        0.5 * (p0.x + p1.x + d * (t0.x - t1.x)),
+        0.5 * (p0.y + p1.y + d * (t0.y - t1.y)),
+    );
+    let first = arc_from_tangent(p0, t0, j)?;
+    let second = arc_from_tangent(p1, -t1, j)?.reversed();
+    Some([first, second].into_iter().filter(|s| s.length() > 0.0).collect())
+}
+
+/// The arc (or line) that leaves `p` along unit tangent `t` and ends at `q`.
+fn arc_from_tangent(p: Point, t: Vector, q: Point) -> Option<Segment> {
+    let w = q - p;
+    let ww = w.length_sq();
+    if ww == 0.0 {
+        return Some(Segment::Line(Line::new(p, q)));
+    }
+    let n = t.perp();
+    let nw = n.dot(w);
+    // Signed distance from p to the centre along n.
+    let s = ww / (2.0 * nw);
+    // Distance of the arc from its chord, roughly: a flatter arc is a line.
+    let sagitta = 0.5 * nw.abs();
+    if !s.is_finite() || sagitta < super::curve::FLAT_ARC {
+        return (w.dot(t) > 0.0).then_some(Segment::Line(Line::new(p, q)));
+    }
+    let center = p + n * s;
+    Some(Segment::Arc(Arc::from_center(center, p, q, s > 0.0)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_biarc_is_tangent_at_both_ends() {
+        let (p0, t0) = (Point::new(0.0, 0.0), Vector::new(1.0, 0.0));
+        let (p1, t1) = (Point::new(10.0, 3.0), Vector::new(0.0, 1.0));
+        let segs = biarc(p0, t0, p1, t1).unwrap();
+        assert_eq!(segs.len(), 2);
+        assert!(segs[0].start().distance(p0) < 1e-9 && segs[1].end().distance(p1) < 1e-9);
+        assert!(segs[0].end().distance(segs[1].start()) < 1e-9);
+        assert!((segs[0].tangent_at(0.0) - t0).length() < 1e-9);
+        assert!((segs[1].tangent_at(1.0) - t1).length() < 1e-9);
+        assert!((segs[0].tangent_at(1.0) - segs[1].tangent_at(0.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn an_ellipse_quarter_fits_within_tolerance() {
+        let eval = |t: f64| {
+            (
+                Point::new(30.0 * t.cos(), 10.0 * t.sin()),
+                Vector::new(-30.0 * t.sin(), 10.0 * t.cos()),
+            )
+        };
+        let mut out = Vec::new();
+        fit(&eval, 0.0, std::f64::consts::FRAC_PI_2, 0.001, &mut out);
+        assert!(out.iter().all(|s| matches!(s, Segment::Arc(_))));
+        assert!(out.len() < 40, "{} arcs", out.len());
+        for i in 0..=1000 {
+            let p = eval(i as f64 / 1000.0 * std::f64::consts::FRAC_PI_2).0;
+            let d = out
+                .iter()
+                .map(|s| point_distance(s, p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.001, "deviation {d}");
+        }
+    }
+}

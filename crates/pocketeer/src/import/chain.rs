@@ -1,0 +1,455 @@
+//! Joining drawn elements, in any order and direction, into closed contours.
+//!
+//! End points closer than the join tolerance become one node, and the elements are moved onto
+//! it (no sliver is added). Duplicates (the same element drawn twice, or one lying on another)
+//! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
+//! their free end coordinates.
+
+use super::error::fmt_point;
+use super::Element;
+use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
+use std::collections::HashMap;
+
+/// A closed contour found by chaining.
+#[derive(Debug, Clone)]
+pub struct ChainedContour {
+    /// The contour, in the direction it was found.
+    pub contour: Contour,
+    /// Layer index (into the drawing's layers).
+    pub layer: usize,
+    /// The drawing elements it was built from (indices into the drawing's elements).
+    pub elements: Vec<usize>,
+}
+
+/// A chain of elements that does not close.
+#[derive(Debug, Clone)]
+pub struct OpenChain {
+    /// Layer index.
+    pub layer: usize,
+    /// First free end.
+    pub start: Point,
+    /// Last free end.
+    pub end: Point,
+    /// The drawing elements of the chain.
+    pub elements: Vec<usize>,
+}
+
+/// The result of chaining.
+#[derive(Debug, Clone, Default)]
+pub struct Chains {
+    /// Closed contours.
+    pub contours: Vec<ChainedContour>,
+    /// Chains that stay open.
+    pub open: Vec<OpenChain>,
+    /// Elements dropped because another element covers them.
+    pub duplicates_dropped: usize,
+    /// Elements dropped because they have no length.
+    pub zero_length_dropped: usize,
+    /// Nodes where end points that did not coincide exactly were joined.
+    pub gaps_closed: usize,
+    /// The largest distance an end point was moved to join its node.
+    pub largest_gap: f64,
+    /// Remarks (branches, closed gaps).
+    pub warnings: Vec<String>,
+}
+
+/// End `0` (start) or `1` (end) of an element.
+type End = (usize, u8);
+
+/// Joins `elements` into closed contours, per layer.
+pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
+    let mut out = Chains::default();
+    let mut alive = vec![true; elements.len()];
+    out.duplicates_dropped = drop_covered(elements, &mut alive, tol);
+
+    // Full circles are contours by themselves (or points, when smaller than the tolerance).
+    for (i, e) in elements.iter().enumerate() {
+        if let Segment::Arc(a) = e.segment {
+            if alive[i] && a.is_full_circle() {
+                alive[i] = false;
+                if a.radius <= tol.join {
+                    out.zero_length_dropped += 1;
+                } else {
+                    out.contours.push(ChainedContour {
+                        contour: Contour::new(vec![e.segment]),
+                        layer: e.layer,
+                        elements: vec![i],
+                    });
+                }
+            }
+        }
+    }
+
+    let nodes = Nodes::build(elements, &alive, tol);
+    out.gaps_closed = nodes.gaps_closed;
+    out.largest_gap = nodes.largest_gap;
+    if nodes.gaps_closed > 0 {
+        out.warnings.push(format!(
+            "{} gap(s) between end points closed, the largest {:.6} mm at {}",
+            nodes.gaps_closed,
+            nodes.largest_gap,
+            fmt_point(nodes.largest_gap_at)
+        ));
+    }
+    // An element whose ends fall into one node has no length worth keeping, unless it is long
+    // (an arc of almost 360°), which closes on itself.
+    for (i, e) in elements.iter().enumerate() {
+        if alive[i]
+            && nodes.node((i, 0)) == nodes.node((i, 1))
+            && e.segment.length() <= 4.0 * tol.join.max(tol.eps)
+        {
+            alive[i] = false;
+            out.zero_length_dropped += 1;
+        }
+    }
+    let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
+
+    let mut used = vec![false; elements.len()];
+    for first in 0..elements.len() {
+        if !alive[first] || used[first] {
+            continue;
+        }
+        // Walk forward from the first element's end; if the walk stops at a free end, walk
+        // backward from its start too.
+        let mut forward = vec![(first, false)];
+        used[first] = true;
+        let mut closed = false;
+        let mut at: End = (first, 1);
+        while let Some(&(next, next_end)) = partner.get(&at) {
+            if next == first {
+                closed = true;
+                break;
+            }
+            if used[next] {
+                break;
+            }
+            used[next] = true;
+            forward.push((next, next_end == 1));
+            at = (next, 1 - next_end);
+        }
+        let mut walk = Vec::new();
+        if !closed {
+            let mut at: End = (first, 0);
+            while let Some(&(prev, prev_end)) = partner.get(&at) {
+                if used[prev] {
+                    break;
+                }
+                used[prev] = true;
+                walk.push((prev, prev_end == 0));
+                at = (prev, 1 - prev_end);
+            }
+            walk.reverse();
+        }
+        walk.extend(forward);
+        let layer = elements[first].layer;
+        if closed {
+            for lp in split_at_repeated_nodes(&walk, &nodes) {
+                let segs = lp
+                    .iter()
+                    .map(|&(i, rev)| snapped(&elements[i].segment, rev, i, &nodes))
+                    .collect();
+                out.contours.push(ChainedContour {
+                    contour: Contour::new(segs),
+                    layer,
+                    elements: lp.iter().map(|w| w.0).collect(),
+                });
+            }
+        } else {
+            let (s, e) = (walk[0], walk[walk.len() - 1]);
+            let start = nodes.point(if s.1 { (s.0, 1) } else { (s.0, 0) });
+            let end = nodes.point(if e.1 { (e.0, 0) } else { (e.0, 1) });
+            out.open.push(OpenChain {
+                layer,
+                start,
+                end,
+                elements: walk.iter().map(|w| w.0).collect(),
+            });
+        }
+    }
+    out
+}
+
+/// Marks elements lying entirely on another element of the same layer as dead; returns how many.
+fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> usize {
+    let boxes: Vec<Aabb> = elements
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            if alive[i] {
+                e.segment.bbox().inflated(tol.join)
+            } else {
+                Aabb::EMPTY
+            }
+        })
+        .collect();
+    let index = BoxIndex::new(&boxes);
+    let mut dropped = 0;
+    for (j, e) in elements.iter().enumerate() {
+        if !alive[j] {
+            continue;
+        }
+        for i in index.intersecting(&e.segment.bbox()) {
+            if i == j || !alive[i] || elements[i].layer != e.layer {
+                continue;
+            }
+            let covered = covers(&elements[i].segment, &e.segment, tol.join);
+            // Of two equal elements, keep the first.
+            if covered && (i < j || !covers(&e.segment, &elements[i].segment, tol.join)) {
+                alive[j] = false;
+                dropped += 1;
+                break;
+            }
+        }
+    }
+    dropped
+}
+
+/// True when `inner` lies on `outer` within `tol`.
+fn covers(outer: &Segment, inner: &Segment, tol: f64) -> bool {
+    let on = |p: Point| point_distance(outer, p) <= tol;
+    match (outer, inner) {
+        (Segment::Line(_), Segment::Line(l)) => on(l.start) && on(l.end),
+        (Segment::Arc(a), Segment::Arc(b)) => {
+            a.center.distance(b.center) <= tol
+                && (a.radius - b.radius).abs() <= tol
+                && (0..=4).all(|k| on(inner.point_at(k as f64 / 4.0)))
+        }
+        _ => false,
+    }
+}
+
+/// End points merged into nodes.
+struct Nodes {
+    /// Node of each element end: `node_of[2 * element + end]`.
+    node_of: Vec<usize>,
+    /// Node positions (mean of their end points).
+    pos: Vec<Point>,
+    gaps_closed: usize,
+    largest_gap: f64,
+    largest_gap_at: Point,
+}
+
+impl Nodes {
+    fn build(elements: &[Element], alive: &[bool], tol: &Tolerance) -> Nodes {
+        let n = elements.len();
+        let ends: Vec<Point> = (0..2 * n)
+            .map(|k| {
+                if k % 2 == 0 {
+                    elements[k / 2].segment.start()
+                } else {
+                    elements[k / 2].segment.end()
+                }
+            })
+            .collect();
+        let radius = tol.join.max(tol.eps);
+        let cell = |p: Point| ((p.x / radius).floor() as i64, (p.y / radius).floor() as i64);
+        let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        let mut parent: Vec<usize> = (0..2 * n).collect();
+        fn find(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        for k in 0..2 * n {
+            if !alive[k / 2] {
+                continue;
+            }
+            let (cx, cy) = cell(ends[k]);
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    if let Some(list) = grid.get(&(cx + dx, cy + dy)) {
+                        for &o in list {
+                            // Contours are chained within their layer only.
+                            if elements[o / 2].layer == elements[k / 2].layer
+                                && ends[o].distance(ends[k]) <= radius
+                            {
+                                let (a, b) = (find(&mut parent, o), find(&mut parent, k));
+                                parent[a] = b;
+                            }
+                        }
+                    }
+                }
+            }
+            grid.entry((cx, cy)).or_default().push(k);
+        }
+        let mut index: HashMap<usize, usize> = HashMap::new();
+        let mut node_of = vec![usize::MAX; 2 * n];
+        let mut sums: Vec<(f64, f64, usize)> = Vec::new();
+        for k in 0..2 * n {
+            if !alive[k / 2] {
+                continue;
+            }
+            let root = find(&mut parent, k);
+            let id = *index.entry(root).or_insert_with(|| {
+                sums.push((0.0, 0.0, 0));
+                sums.len() - 1
+            });
+            node_of[k] = id;
+            sums[id].0 += ends[k].x;
+            sums[id].1 += ends[k].y;
+            sums[id].2 += 1;
+        }
+        let pos: Vec<Point> = sums
+            .iter()
+            .map(|&(x, y, c)| Point::new(x / c as f64, y / c as f64))
+            .collect();
+        let mut nodes = Nodes {
+            node_of,
+            pos,
+            gaps_closed: 0,
+            largest_gap: 0.0,
+            largest_gap_at: Point::ORIGIN,
+        };
+        let mut moved = vec![0.0f64; nodes.pos.len()];
+        for k in 0..2 * n {
+            if alive[k / 2] {
+                let id = nodes.node_of[k];
+                moved[id] = moved[id].max(ends[k].distance(nodes.pos[id]));
+            }
+        }
+        for (id, &m) in moved.iter().enumerate() {
+            // Rounding in the writer's coordinates is not a gap.
+            if m > tol.eps * 10.0 {
+                nodes.gaps_closed += 1;
+                if m > nodes.largest_gap {
+                    nodes.largest_gap = m;
+                    nodes.largest_gap_at = nodes.pos[id];
+                }
+            }
+        }
+        nodes
+    }
+
+    fn node(&self, (e, end): End) -> usize {
+        self.node_of[2 * e + end as usize]
+    }
+
+    fn point(&self, end: End) -> Point {
+        self.pos[self.node(end)]
+    }
+}
+
+/// At every node, pairs the element ends meeting there so that contours pass through it.
+/// Two ends pair directly; at a node where 2k ends meet, ends are paired with their angular
+/// neighbours so that no two contours cross there; an odd end is left free.
+fn pair_ends(
+    elements: &[Element],
+    alive: &[bool],
+    nodes: &Nodes,
+    warnings: &mut Vec<String>,
+) -> HashMap<End, End> {
+    let mut at_node: Vec<Vec<End>> = vec![Vec::new(); nodes.pos.len()];
+    for (i, e) in elements.iter().enumerate() {
+        if !alive[i] {
+            continue;
+        }
+        let (n0, n1) = (nodes.node((i, 0)), nodes.node((i, 1)));
+        // An element whose two ends joined (an arc of almost 360°) closes on itself.
+        if n0 == n1 && !matches!(e.segment, Segment::Arc(a) if a.is_full_circle()) {
+            at_node[n0].push((i, 0));
+            at_node[n0].push((i, 1));
+            continue;
+        }
+        at_node[n0].push((i, 0));
+        at_node[n1].push((i, 1));
+    }
+    let mut partner = HashMap::new();
+    for (id, ends) in at_node.iter_mut().enumerate() {
+        if ends.len() == 2 {
+            partner.insert(ends[0], ends[1]);
+            partner.insert(ends[1], ends[0]);
+            continue;
+        }
+        if ends.len() < 3 {
+            continue;
+        }
+        if ends.len() % 2 == 1 {
+            warnings.push(format!(
+                "{} elements end at {}: one of them is left open",
+                ends.len(),
+                fmt_point(nodes.pos[id])
+            ));
+        }
+        // Direction leaving the node along each element.
+        let angle = |&(i, end): &End| {
+            let s = &elements[i].segment;
+            let t = if end == 0 {
+                s.tangent_at(0.0)
+            } else {
+                -s.tangent_at(1.0)
+            };
+            t.angle()
+        };
+        ends.sort_by(|a, b| angle(a).total_cmp(&angle(b)));
+        let m = ends.len() / 2 * 2;
+        let gap = |k: usize| {
+            let (a, b) = (angle(&ends[k % ends.len()]), angle(&ends[(k + 1) % ends.len()]));
+            (b - a).rem_euclid(std::f64::consts::TAU)
+        };
+        let cost = |offset: usize| (0..m / 2).map(|p| gap(offset + 2 * p)).sum::<f64>();
+        let offset = if cost(1) < cost(0) { 1 } else { 0 };
+        for p in 0..m / 2 {
+            let a = ends[(offset + 2 * p) % ends.len()];
+            let b = ends[(offset + 2 * p + 1) % ends.len()];
+            partner.insert(a, b);
+            partner.insert(b, a);
+        }
+    }
+    partner
+}
+
+/// Splits a closed walk that passes a node twice into loops that each pass it once.
+fn split_at_repeated_nodes(walk: &[(usize, bool)], nodes: &Nodes) -> Vec<Vec<(usize, bool)>> {
+    let start_node = |&(i, rev): &(usize, bool)| nodes.node((i, if rev { 1 } else { 0 }));
+    let mut loops = Vec::new();
+    let mut stack: Vec<(usize, bool)> = Vec::new();
+    let mut seen: HashMap<usize, usize> = HashMap::new(); // node -> position in stack
+    for w in walk {
+        let n = start_node(w);
+        if let Some(&at) = seen.get(&n) {
+            let lp: Vec<(usize, bool)> = stack.drain(at..).collect();
+            for x in &lp {
+                seen.remove(&start_node(x));
+            }
+            loops.push(lp);
+        }
+        seen.insert(n, stack.len());
+        stack.push(*w);
+    }
+    if !stack.is_empty() {
+        loops.push(stack);
+    }
+    loops
+}
+
+/// Element `i` oriented (`rev`) and with its ends moved onto their nodes.
+fn snapped(seg: &Segment, rev: bool, i: usize, nodes: &Nodes) -> Segment {
+    let (a, b) = (nodes.point((i, 0)), nodes.point((i, 1)));
+    let s = match seg {
+        Segment::Line(_) => Segment::Line(Line::new(a, b)),
+        Segment::Arc(arc) => {
+            if a == b {
+                // Ends joined into one node: a closed arc.
+                Segment::Arc(Arc::new(
+                    arc.center,
+                    arc.radius,
+                    (a - arc.center).angle(),
+                    arc.sweep.signum() * std::f64::consts::TAU,
+                ))
+            } else if a.distance(arc.start()) == 0.0 && b.distance(arc.end()) == 0.0 {
+                *seg
+            } else {
+                Arc::from_bulge(a, b, arc.bulge())
+                    .map(Segment::Arc)
+                    .unwrap_or(Segment::Line(Line::new(a, b)))
+            }
+        }
+    };
+    if rev {
+        s.reversed()
+    } else {
+        s
+    }
+}

@@ -1,0 +1,339 @@
+//! The curves a DXF entity can describe, before they become lines and arcs: lines, elliptical
+//! arcs in conjugate form (circles and circular arcs included), and NURBS. All of them map exactly
+//! under the affine transforms of block insertion and object coordinate systems.
+
+use crate::geom::{Arc, Line, Point, Segment, Vector};
+
+/// An arc that strays less than this from its chord (mm) is a line: huge radii only cost
+/// precision in every later computation.
+pub const FLAT_ARC: f64 = 1e-7;
+
+/// A 2D affine map: `x' = a·x + b·y + e`, `y' = c·x + d·y + f`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Affine {
+    /// Linear part, first row.
+    pub a: f64,
+    /// Linear part, first row.
+    pub b: f64,
+    /// Linear part, second row.
+    pub c: f64,
+    /// Linear part, second row.
+    pub d: f64,
+    /// Translation x.
+    pub e: f64,
+    /// Translation y.
+    pub f: f64,
+}
+
+impl Affine {
+    /// The identity.
+    pub const IDENTITY: Affine = Affine {
+        a: 1.0,
+        b: 0.0,
+        c: 0.0,
+        d: 1.0,
+        e: 0.0,
+        f: 0.0,
+    };
+
+    /// Uniform scale about the origin.
+    pub fn scale(s: f64) -> Affine {
+        Affine::scale_xy(s, s)
+    }
+
+    /// Scale by `sx`, `sy` about the origin.
+    pub fn scale_xy(sx: f64, sy: f64) -> Affine {
+        Affine {
+            a: sx,
+            d: sy,
+            ..Affine::IDENTITY
+        }
+    }
+
+    /// Translation by `v`.
+    pub fn translate(v: Vector) -> Affine {
+        Affine {
+            e: v.x,
+            f: v.y,
+            ..Affine::IDENTITY
+        }
+    }
+
+    /// Rotation by `angle` radians about the origin.
+    pub fn rotate(angle: f64) -> Affine {
+        let (s, c) = angle.sin_cos();
+        Affine {
+            a: c,
+            b: -s,
+            c: s,
+            d: c,
+            e: 0.0,
+            f: 0.0,
+        }
+    }
+
+    /// The map that applies `inner` first, then `self`.
+    pub fn then(&self, inner: &Affine) -> Affine {
+        let o = self;
+        Affine {
+            a: o.a * inner.a + o.b * inner.c,
+            b: o.a * inner.b + o.b * inner.d,
+            c: o.c * inner.a + o.d * inner.c,
+            d: o.c * inner.b + o.d * inner.d,
+            e: o.a * inner.e + o.b * inner.f + o.e,
+            f: o.c * inner.e + o.d * inner.f + o.f,
+        }
+    }
+
+    /// Image of a point.
+    pub fn point(&self, p: Point) -> Point {
+        Point::new(
+            self.a * p.x + self.b * p.y + self.e,
+            self.c * p.x + self.d * p.y + self.f,
+        )
+    }
+
+    /// Image of a vector (translation ignored).
+    pub fn vector(&self, v: Vector) -> Vector {
+        Vector::new(self.a * v.x + self.b * v.y, self.c * v.x + self.d * v.y)
+    }
+
+    /// Determinant of the linear part: negative for a mirroring map.
+    pub fn det(&self) -> f64 {
+        self.a * self.d - self.b * self.c
+    }
+}
+
+/// The map from an entity's object coordinate system (normal `n`, elevation `z`) to world XY,
+/// by DXF's arbitrary-axis algorithm followed by projection on the XY plane.
+pub fn ocs_to_world(n: [f64; 3], elevation: f64) -> Affine {
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len.is_nan() || len <= 0.0 || !len.is_finite() {
+        return Affine::IDENTITY;
+    }
+    let n = [n[0] / len, n[1] / len, n[2] / len];
+    if n[0] == 0.0 && n[1] == 0.0 && n[2] > 0.0 {
+        return Affine::IDENTITY;
+    }
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let unit = |a: [f64; 3]| {
+        let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        [a[0] / l, a[1] / l, a[2] / l]
+    };
+    let ax = if n[0].abs() < 1.0 / 64.0 && n[1].abs() < 1.0 / 64.0 {
+        unit(cross([0.0, 1.0, 0.0], n))
+    } else {
+        unit(cross([0.0, 0.0, 1.0], n))
+    };
+    let ay = unit(cross(n, ax));
+    Affine {
+        a: ax[0],
+        b: ay[0],
+        c: ax[1],
+        d: ay[1],
+        e: n[0] * elevation,
+        f: n[1] * elevation,
+    }
+}
+
+/// An elliptical arc in conjugate form: `P(t) = center + u·cos t + v·sin t` for t from `t0` to
+/// `t0 + sweep`. A circle has |u| = |v| and u ⊥ v.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EllipseArc {
+    /// Centre.
+    pub center: Point,
+    /// Point at t = 0, relative to the centre.
+    pub u: Vector,
+    /// Point at t = π/2, relative to the centre.
+    pub v: Vector,
+    /// First parameter.
+    pub t0: f64,
+    /// Signed parameter sweep.
+    pub sweep: f64,
+}
+
+impl EllipseArc {
+    /// The point at parameter `t`.
+    pub fn point(&self, t: f64) -> Point {
+        let (s, c) = t.sin_cos();
+        self.center + self.u * c + self.v * s
+    }
+
+    /// The derivative at parameter `t`.
+    pub fn derivative(&self, t: f64) -> Vector {
+        let (s, c) = t.sin_cos();
+        self.v * c - self.u * s
+    }
+
+    /// The exact circular arc when this is one.
+    pub fn as_circular(&self) -> Option<Arc> {
+        let (lu, lv) = (self.u.length(), self.v.length());
+        if lu == 0.0 || lv == 0.0 {
+            return None;
+        }
+        let round = (lu - lv).abs() <= 1e-10 * lu && self.u.dot(self.v).abs() <= 1e-10 * lu * lv;
+        if !round {
+            return None;
+        }
+        let ccw = self.u.cross(self.v) > 0.0;
+        let base = self.u.angle();
+        let (start, sweep) = if ccw {
+            (base + self.t0, self.sweep)
+        } else {
+            (base - self.t0, -self.sweep)
+        };
+        Some(Arc::new(self.center, 0.5 * (lu + lv), start, sweep))
+    }
+
+    /// The image under `m`.
+    pub fn transformed(&self, m: &Affine) -> EllipseArc {
+        EllipseArc {
+            center: m.point(self.center),
+            u: m.vector(self.u),
+            v: m.vector(self.v),
+            ..*self
+        }
+    }
+}
+
+/// A non-uniform rational B-spline.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nurbs {
+    /// Degree (1 = polyline, 3 = the usual cubic).
+    pub degree: usize,
+    /// Knot vector: control points + degree + 1 values, non-decreasing.
+    pub knots: Vec<f64>,
+    /// Control points.
+    pub points: Vec<Point>,
+    /// Weights, one per control point.
+    pub weights: Vec<f64>,
+}
+
+impl Nurbs {
+    /// The non-empty knot spans of the curve's domain: `(k, knots[k], knots[k + 1])`.
+    pub fn spans(&self) -> Vec<(usize, f64, f64)> {
+        let (p, n) = (self.degree, self.points.len());
+        (p..n)
+            .map(|k| (k, self.knots[k], self.knots[k + 1]))
+            .filter(|(_, a, b)| b > a)
+            .collect()
+    }
+
+    /// The point at `t` of the polynomial piece on span `k` (de Boor's algorithm). Evaluating
+    /// on an explicit span keeps both ends of a span on that span's piece, which matters where
+    /// a knot of full multiplicity lets the curve jump.
+    pub fn point_in_span(&self, k: usize, t: f64) -> Point {
+        let p = self.degree;
+        let mut d: Vec<[f64; 3]> = (0..=p)
+            .map(|j| {
+                let i = k + j - p;
+                let w = self.weights[i];
+                [self.points[i].x * w, self.points[i].y * w, w]
+            })
+            .collect();
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = k + j - p;
+                let denom = self.knots[i + p + 1 - r] - self.knots[i];
+                let alpha = if denom == 0.0 {
+                    0.0
+                } else {
+                    (t - self.knots[i]) / denom
+                };
+                let prev = d[j - 1];
+                for (c, v) in d[j].iter_mut().enumerate() {
+                    *v = (1.0 - alpha) * prev[c] + alpha * *v;
+                }
+            }
+        }
+        let [x, y, w] = d[p];
+        Point::new(x / w, y / w)
+    }
+
+    /// The image under `m` (B-splines are affinely invariant: map the control points).
+    pub fn transformed(&self, m: &Affine) -> Nurbs {
+        Nurbs {
+            points: self.points.iter().map(|&p| m.point(p)).collect(),
+            ..self.clone()
+        }
+    }
+}
+
+/// Any curve an entity describes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Curve {
+    /// A straight line.
+    Line(Point, Point),
+    /// An elliptical or circular arc.
+    Ellipse(EllipseArc),
+    /// A spline.
+    Spline(Nurbs),
+}
+
+impl Curve {
+    /// The image under `m`.
+    pub fn transformed(&self, m: &Affine) -> Curve {
+        match self {
+            Curve::Line(a, b) => Curve::Line(m.point(*a), m.point(*b)),
+            Curve::Ellipse(e) => Curve::Ellipse(e.transformed(m)),
+            Curve::Spline(s) => Curve::Spline(s.transformed(m)),
+        }
+    }
+
+    /// True when every number defining the curve is finite and within `limit` of the origin.
+    pub fn check_coordinates(&self, limit: f64) -> Result<(), Point> {
+        let ok = |p: Point| p.is_finite() && p.x.abs() <= limit && p.y.abs() <= limit;
+        let bad = match self {
+            Curve::Line(a, b) => [*a, *b].into_iter().find(|p| !ok(*p)),
+            Curve::Ellipse(e) => {
+                let pts = [e.center, e.center + e.u, e.center + e.v];
+                pts.into_iter()
+                    .find(|p| !ok(*p))
+                    .or_else(|| (!(e.t0.is_finite() && e.sweep.is_finite())).then_some(e.center))
+            }
+            Curve::Spline(s) => s.points.iter().copied().find(|p| !ok(*p)),
+        };
+        bad.map_or(Ok(()), Err)
+    }
+
+    /// The curve as exact lines and arcs: lines and circular arcs as they are, ellipses and
+    /// splines as biarcs within `tolerance`.
+    pub fn to_segments(&self, tolerance: f64, out: &mut Vec<Segment>) {
+        match self {
+            Curve::Line(a, b) => out.push(Segment::Line(Line::new(*a, *b))),
+            Curve::Ellipse(e) => match e.as_circular() {
+                Some(arc) if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() => {
+                    out.push(Segment::Line(Line::new(arc.start(), arc.end())))
+                }
+                Some(arc) => out.push(Segment::Arc(arc)),
+                None => {
+                    // Split at quarter turns so that no piece holds an inflection of its tangent.
+                    let pieces = (e.sweep.abs() / (std::f64::consts::PI / 2.0)).ceil().max(1.0) as usize;
+                    for i in 0..pieces {
+                        let a = e.t0 + e.sweep * i as f64 / pieces as f64;
+                        let b = e.t0 + e.sweep * (i + 1) as f64 / pieces as f64;
+                        super::biarc::fit(&|t| (e.point(t), e.derivative(t)), a, b, tolerance, out);
+                    }
+                }
+            },
+            Curve::Spline(s) => {
+                for (k, a, b) in s.spans() {
+                    let h = (b - a) * 1e-7;
+                    let eval = |t: f64| {
+                        // One-sided differences inside the span: the curve may have a corner at a knot.
+                        let (t1, t2) = if t + h <= b { (t, t + h) } else { (t - h, t) };
+                        let (p1, p2) = (s.point_in_span(k, t1), s.point_in_span(k, t2));
+                        (s.point_in_span(k, t), (p2 - p1) / h)
+                    };
+                    super::biarc::fit(&eval, a, b, tolerance, out);
+                }
+            }
+        }
+    }
+}

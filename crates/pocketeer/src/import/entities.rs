@@ -1,0 +1,250 @@
+//! From one DXF entity to the curves it draws, in world XY of the entity's own space.
+
+use super::curve::{ocs_to_world, Affine, Curve, EllipseArc, Nurbs};
+use super::dxf::{Group, RawEntity};
+use crate::geom::{Arc, Point, Vector};
+use std::f64::consts::TAU;
+
+/// What reading one entity gave.
+pub enum Drawn {
+    /// The curves it draws (possibly none, e.g. a one-point polyline).
+    Curves(Vec<Curve>),
+    /// An entity type that draws no outline (text, dimension, hatch, ...).
+    Ignored,
+}
+
+/// Values of one entity, by group code.
+struct Fields<'a>(&'a RawEntity);
+
+impl Fields<'_> {
+    fn real(&self, code: i32) -> Option<f64> {
+        self.0.group(code).and_then(Group::real)
+    }
+    fn real_or(&self, code: i32, default: f64) -> f64 {
+        self.real(code).unwrap_or(default)
+    }
+    fn int_or(&self, code: i32, default: i64) -> i64 {
+        self.0.group(code).and_then(Group::int).unwrap_or(default)
+    }
+    fn point(&self, code: i32) -> Option<Point> {
+        Some(Point::new(self.real(code)?, self.real_or(code + 10, 0.0)))
+    }
+    fn extrusion(&self) -> [f64; 3] {
+        [
+            self.real_or(210, 0.0),
+            self.real_or(220, 0.0),
+            self.real_or(230, 1.0),
+        ]
+    }
+    fn ocs(&self, elevation: f64) -> Affine {
+        ocs_to_world(self.extrusion(), elevation)
+    }
+    /// Every value of `code`, in order.
+    fn all(&self, code: i32) -> Vec<f64> {
+        self.0
+            .groups
+            .iter()
+            .filter(|g| g.code == code)
+            .map(|g| g.real().unwrap_or(f64::NAN))
+            .collect()
+    }
+}
+
+/// The curves of a drawing entity. Errors are messages about this entity.
+pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
+    let f = Fields(e);
+    let curves = match e.kind.as_str() {
+        "LINE" => {
+            let a = f.point(10).ok_or("LINE without a start point")?;
+            let b = f.point(11).ok_or("LINE without an end point")?;
+            vec![Curve::Line(a, b)]
+        }
+        "CIRCLE" | "ARC" => {
+            let c = f.point(10).ok_or("no centre")?;
+            let r = f.real(40).ok_or("no radius")?;
+            if r.is_nan() || r <= 0.0 {
+                return Err(format!("radius {r} is not positive"));
+            }
+            let (t0, sweep) = if e.kind == "CIRCLE" {
+                (0.0, TAU)
+            } else {
+                let a0 = f.real_or(50, 0.0).to_radians();
+                let a1 = f.real_or(51, 360.0).to_radians();
+                let mut sweep = (a1 - a0).rem_euclid(TAU);
+                if sweep == 0.0 && a1 != a0 {
+                    sweep = TAU; // 0° to 360°: a whole circle written as an arc
+                }
+                (a0, sweep)
+            };
+            let arc = EllipseArc {
+                center: c,
+                u: Vector::new(r, 0.0),
+                v: Vector::new(0.0, r),
+                t0,
+                sweep,
+            };
+            let ocs = f.ocs(f.real_or(30, 0.0));
+            if sweep == 0.0 {
+                vec![]
+            } else {
+                vec![Curve::Ellipse(arc.transformed(&ocs))]
+            }
+        }
+        "ELLIPSE" => {
+            let c = f.point(10).ok_or("no centre")?;
+            let major = Vector::new(f.real_or(11, 0.0), f.real_or(21, 0.0));
+            let major_z = f.real_or(31, 0.0);
+            let ratio = f.real_or(40, 1.0);
+            if major.length() == 0.0 || ratio.is_nan() || ratio <= 0.0 {
+                return Err("degenerate ellipse (zero axis)".into());
+            }
+            let n = f.extrusion();
+            // Minor axis = normal × major, scaled by the ratio; projected on XY.
+            let minor = Vector::new(n[1] * major_z - n[2] * major.y, n[2] * major.x - n[0] * major_z) * ratio;
+            let t0 = f.real_or(41, 0.0);
+            let t1 = f.real_or(42, TAU);
+            let mut sweep = (t1 - t0).rem_euclid(TAU);
+            if sweep == 0.0 {
+                sweep = TAU;
+            }
+            vec![Curve::Ellipse(EllipseArc {
+                center: c,
+                u: major,
+                v: minor,
+                t0,
+                sweep,
+            })]
+        }
+        "LWPOLYLINE" => {
+            let mut verts: Vec<(Point, f64)> = Vec::new();
+            for g in &e.groups {
+                match g.code {
+                    10 => verts.push((Point::new(g.real().unwrap_or(f64::NAN), 0.0), 0.0)),
+                    20 => {
+                        if let Some(v) = verts.last_mut() {
+                            v.0.y = g.real().unwrap_or(f64::NAN);
+                        }
+                    }
+                    42 => {
+                        if let Some(v) = verts.last_mut() {
+                            v.1 = g.real().unwrap_or(0.0);
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            let closed = f.int_or(70, 0) & 1 == 1;
+            polyline(&verts, closed, &f.ocs(f.real_or(38, 0.0)))
+        }
+        "POLYLINE" => {
+            let flags = f.int_or(70, 0);
+            if flags & (16 | 64) != 0 {
+                return Ok(Drawn::Ignored); // polygon and polyface meshes are surfaces, not outlines
+            }
+            let is_3d = flags & 8 != 0;
+            let spline_fit = flags & 4 != 0;
+            let mut verts = Vec::new();
+            for v in &e.vertices {
+                let vf = Fields(v);
+                let vflags = vf.int_or(70, 0);
+                // A spline-fit polyline lists its frame (control) vertices too: draw the fitted ones.
+                if spline_fit && vflags & 16 != 0 {
+                    continue;
+                }
+                let p = vf.point(10).ok_or("VERTEX without coordinates")?;
+                verts.push((p, if is_3d { 0.0 } else { vf.real_or(42, 0.0) }));
+            }
+            let m = if is_3d {
+                Affine::IDENTITY
+            } else {
+                f.ocs(f.real_or(30, 0.0))
+            };
+            polyline(&verts, flags & 1 == 1, &m)
+        }
+        "SPLINE" => spline(&f)?,
+        "TEXT" | "MTEXT" | "DIMENSION" | "HATCH" | "POINT" | "SOLID" | "3DFACE" | "ATTDEF" | "ATTRIB"
+        | "LEADER" | "MLEADER" | "MULTILEADER" | "VIEWPORT" | "IMAGE" | "WIPEOUT" | "TRACE" | "3DSOLID"
+        | "REGION" | "BODY" | "TOLERANCE" | "RAY" | "XLINE" | "OLE2FRAME" | "MESH" | "SURFACE" | "HELIX"
+        | "ACAD_TABLE" | "MLINE" => return Ok(Drawn::Ignored),
+        _ => return Ok(Drawn::Ignored),
+    };
+    Ok(Drawn::Curves(curves))
+}
+
+/// Lines and bulge arcs through `verts` (point, bulge to the next), mapped by `m`.
+fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine) -> Vec<Curve> {
+    let n = verts.len();
+    let count = if closed { n } else { n.saturating_sub(1) };
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let (a, bulge) = verts[i];
+        let b = verts[(i + 1) % n].0;
+        if a == b {
+            continue;
+        }
+        match Arc::from_bulge(a, b, bulge) {
+            Some(arc) => {
+                let r = arc.radius;
+                let ea = EllipseArc {
+                    center: arc.center,
+                    u: Vector::new(r, 0.0),
+                    v: Vector::new(0.0, r),
+                    t0: arc.start_angle,
+                    sweep: arc.sweep,
+                };
+                out.push(Curve::Ellipse(ea.transformed(m)));
+            }
+            None => out.push(Curve::Line(m.point(a), m.point(b))),
+        }
+    }
+    out
+}
+
+fn spline(f: &Fields) -> Result<Vec<Curve>, String> {
+    let degree = f.int_or(71, 3);
+    if !(1..=11).contains(&degree) {
+        return Err(format!("spline degree {degree} is not supported"));
+    }
+    let degree = degree as usize;
+    let xs = f.all(10);
+    let ys = f.all(20);
+    let knots = f.all(40);
+    if xs.is_empty() {
+        let fit = f.all(11);
+        if fit.len() >= 2 {
+            return Err("spline defined by fit points only; re-save it with control points".into());
+        }
+        return Ok(vec![]);
+    }
+    if xs.len() != ys.len() {
+        return Err("control points with missing coordinates".into());
+    }
+    let points: Vec<Point> = xs.iter().zip(&ys).map(|(&x, &y)| Point::new(x, y)).collect();
+    let n = points.len();
+    if n < degree + 1 {
+        return Err(format!("{n} control points are too few for degree {degree}"));
+    }
+    if knots.len() != n + degree + 1 {
+        return Err(format!(
+            "{} knots where {n} control points of degree {degree} need {}",
+            knots.len(),
+            n + degree + 1
+        ));
+    }
+    if knots.iter().any(|k| !k.is_finite()) || knots.windows(2).any(|w| w[1] < w[0]) {
+        return Err("knot values are not a non-decreasing sequence of numbers".into());
+    }
+    let mut weights = f.all(41);
+    if weights.len() != n {
+        weights = vec![1.0; n];
+    }
+    if weights.iter().any(|w| w.is_nan() || *w <= 0.0 || !w.is_finite()) {
+        return Err("spline weights must be positive numbers".into());
+    }
+    Ok(vec![Curve::Spline(Nurbs {
+        degree,
+        knots,
+        points,
+        weights,
+    })])
+}

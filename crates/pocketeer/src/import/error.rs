@@ -1,0 +1,115 @@
+//! Typed errors of the importer, each naming where in the file and what is wrong.
+
+use crate::geom::Point;
+use std::fmt;
+use thiserror::Error;
+
+/// A place in a DXF file: a line of an ASCII file or a byte offset of a binary one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pos {
+    /// 1-based line number in an ASCII DXF.
+    Line(usize),
+    /// Byte offset in a binary DXF.
+    Byte(usize),
+}
+
+impl fmt::Display for Pos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Pos::Line(n) => write!(f, "line {n}"),
+            Pos::Byte(n) => write!(f, "byte {n}"),
+        }
+    }
+}
+
+/// Which entity of the drawing something is about.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EntityRef {
+    /// Entity type, as in the file (`LINE`, `LWPOLYLINE`, ...).
+    pub kind: String,
+    /// The entity's handle (group 5), when the file has one.
+    pub handle: Option<String>,
+    /// Layer name.
+    pub layer: String,
+    /// Where the entity starts in the file.
+    pub pos: Pos,
+}
+
+impl fmt::Display for EntityRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.kind)?;
+        if let Some(h) = &self.handle {
+            write!(f, " (handle {h})")?;
+        }
+        write!(f, " on layer '{}' at {}", self.layer, self.pos)
+    }
+}
+
+/// Formats a point as `(x, y)` with four decimals.
+pub fn fmt_point(p: Point) -> String {
+    format!("({:.4}, {:.4})", p.x, p.y)
+}
+
+/// Why a drawing could not be imported.
+#[derive(Debug, Error)]
+pub enum ImportError {
+    /// The bytes are not a DXF file at all.
+    #[error("not a DXF file: {0}")]
+    NotDxf(String),
+    /// The group-code structure is broken.
+    #[error("{pos}: {what}")]
+    Syntax {
+        /// Where.
+        pos: Pos,
+        /// What is wrong.
+        what: String,
+    },
+    /// The file stops in the middle of the drawing.
+    #[error("the file ends at {pos} inside the {section} section: it is truncated")]
+    Truncated {
+        /// The last position read.
+        pos: Pos,
+        /// The section that was being read.
+        section: String,
+    },
+    /// One entity cannot be used.
+    #[error("{entity}: {what}")]
+    BadEntity {
+        /// Which entity.
+        entity: EntityRef,
+        /// What is wrong.
+        what: String,
+    },
+    /// A block that inserts itself, directly or through others.
+    #[error("block '{name}' inserts itself ({chain}) at {pos}")]
+    RecursiveBlock {
+        /// The block.
+        name: String,
+        /// The chain of insertions.
+        chain: String,
+        /// Where the INSERT that closes the cycle is.
+        pos: Pos,
+    },
+    /// Expanding blocks would produce more elements than any real drawing has.
+    #[error("block insertions expand to more than {limit} elements (at {pos}): refusing to continue")]
+    TooLarge {
+        /// The limit.
+        limit: usize,
+        /// The INSERT being expanded.
+        pos: Pos,
+    },
+    /// Nothing drawn in model space (after the layer filter).
+    #[error("{0}")]
+    Empty(String),
+    /// No closed contour could be formed.
+    #[error("no closed contour: {0}")]
+    NoClosedContour(String),
+    /// A contour crosses or touches itself.
+    #[error("the contour on layer '{layer}' crosses itself at {}", fmt_point(*.point))]
+    SelfCrossing {
+        /// Layer of the contour.
+        layer: String,
+        /// The crossing point.
+        point: Point,
+    },
+}

@@ -1,0 +1,203 @@
+//! From DXF bytes to pockets: reading ([`dxf`]), block expansion, curves to exact lines and arcs,
+//! chaining into closed contours ([`chain`]), and nesting into pockets with islands ([`region`]).
+
+pub mod biarc;
+pub mod chain;
+pub mod curve;
+pub mod dxf;
+mod entities;
+pub mod error;
+mod expand;
+pub mod region;
+pub mod units;
+
+pub use chain::{chain, ChainedContour, Chains, OpenChain};
+pub use error::{EntityRef, ImportError, Pos};
+pub use region::{find_pockets, Pocket, Regions};
+pub use units::Units;
+
+use crate::geom::{Aabb, Segment, Tolerance, DEFAULT_JOIN_TOLERANCE};
+use curve::Affine;
+use std::collections::BTreeMap;
+
+/// Coordinates beyond this many millimetres from the origin are refused: no machine is that big,
+/// and f64 resolution there would be coarser than our tolerances.
+pub const MAX_COORDINATE: f64 = 1e8;
+
+/// Largest deviation of the arcs that replace an ellipse or spline, in millimetres.
+pub const CURVE_TOLERANCE: f64 = 0.001;
+
+/// How to read a drawing.
+#[derive(Debug, Clone)]
+pub struct ImportOptions {
+    /// Only these layers (case-insensitive); all when `None`.
+    pub layers: Option<Vec<String>>,
+    /// The drawing's unit, overriding `$INSUNITS`; when both are absent, millimetres.
+    pub units: Option<Units>,
+    /// Join tolerance in millimetres.
+    pub join_tolerance: f64,
+}
+
+impl Default for ImportOptions {
+    fn default() -> Self {
+        ImportOptions {
+            layers: None,
+            units: None,
+            join_tolerance: DEFAULT_JOIN_TOLERANCE,
+        }
+    }
+}
+
+/// One drawn line or arc of the drawing, in millimetres.
+#[derive(Debug, Clone)]
+pub struct Element {
+    /// The geometry.
+    pub segment: Segment,
+    /// Index into [`Drawing::layers`].
+    pub layer: usize,
+    /// Index into [`Drawing::sources`]: the entity it was drawn by.
+    pub source: usize,
+}
+
+/// A drawing read from DXF: every outline element in millimetres, with what was seen on the way.
+#[derive(Debug, Clone)]
+pub struct Drawing {
+    /// `$INSUNITS` as declared, if any.
+    pub declared_units: Option<Units>,
+    /// The unit the drawing was read in.
+    pub units: Units,
+    /// Every layer name: the LAYER table, then layers used but not declared.
+    pub layers: Vec<String>,
+    /// Number of model-space entities of each type (before block expansion).
+    pub entity_counts: BTreeMap<String, usize>,
+    /// The outline elements (after the layer filter).
+    pub elements: Vec<Element>,
+    /// The entities elements come from.
+    pub sources: Vec<EntityRef>,
+    /// Bounding box of the elements.
+    pub extent: Aabb,
+    /// Remarks about the file.
+    pub warnings: Vec<String>,
+    /// True for a binary DXF.
+    pub binary: bool,
+}
+
+impl Drawing {
+    /// The tolerances for this drawing.
+    pub fn tolerance(&self, join: f64) -> Tolerance {
+        Tolerance::for_extent(&self.extent, join)
+    }
+}
+
+/// Reads a DXF file's bytes into a [`Drawing`].
+pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, ImportError> {
+    let groups = dxf::read_groups(bytes)?;
+    let doc = dxf::parse_document(&groups)?;
+    let mut warnings = doc.warnings.clone();
+
+    let declared_units = doc
+        .header_value("$INSUNITS")
+        .and_then(|g| g.int())
+        .and_then(Units::from_insunits);
+    let units = options.units.or(declared_units).unwrap_or(Units::Millimeters);
+    if let (Some(d), Some(o)) = (declared_units, options.units) {
+        if d != o {
+            warnings.push(format!("the drawing declares {d}; read as {o} as asked"));
+        }
+    }
+
+    let model: Vec<dxf::RawEntity> = doc
+        .entities
+        .iter()
+        .filter(|e| !e.in_paper_space())
+        .cloned()
+        .collect();
+    let mut entity_counts = BTreeMap::new();
+    for e in &model {
+        *entity_counts.entry(e.kind.clone()).or_insert(0) += 1;
+    }
+    if model.is_empty() {
+        return Err(ImportError::Empty(
+            "model space is empty: the drawing has nothing to pocket".into(),
+        ));
+    }
+
+    let mut expander = expand::Expander::new(&doc);
+    expander.walk(&model, &Affine::scale(units.mm()), None)?;
+    warnings.append(&mut expander.warnings);
+
+    let mut layers = doc.layers.clone();
+    for p in &expander.placed {
+        if !layers.iter().any(|l| l.eq_ignore_ascii_case(&p.layer)) {
+            layers.push(p.layer.clone());
+        }
+    }
+    if let Some(wanted) = &options.layers {
+        for w in wanted {
+            if !layers.iter().any(|l| l.eq_ignore_ascii_case(w)) {
+                warnings.push(format!(
+                    "layer '{w}' is not in the drawing (layers: {})",
+                    layers.join(", ")
+                ));
+            }
+        }
+    }
+    let keep = |layer: &str| {
+        options
+            .layers
+            .as_ref()
+            .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(layer)))
+    };
+
+    let mut elements = Vec::new();
+    let mut sources = Vec::new();
+    let mut extent = Aabb::EMPTY;
+    let mut segs = Vec::new();
+    for p in expander.placed {
+        if !keep(&p.layer) {
+            continue;
+        }
+        let layer = layers
+            .iter()
+            .position(|l| l.eq_ignore_ascii_case(&p.layer))
+            .unwrap_or(0);
+        segs.clear();
+        p.curve.to_segments(CURVE_TOLERANCE, &mut segs);
+        let source = sources.len();
+        sources.push(p.entity);
+        for s in segs.drain(..) {
+            extent = extent.union(&s.bbox());
+            elements.push(Element {
+                segment: s,
+                layer,
+                source,
+            });
+        }
+    }
+    if elements.is_empty() {
+        let what = if options.layers.is_some() {
+            format!(
+                "no lines, arcs, circles, polylines, splines or ellipses on the selected layers (layers: {})",
+                layers.join(", ")
+            )
+        } else {
+            let kinds: Vec<String> = entity_counts.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            format!(
+                "model space holds {} but no lines, arcs, circles, polylines, splines or ellipses",
+                kinds.join(", ")
+            )
+        };
+        return Err(ImportError::Empty(what));
+    }
+    Ok(Drawing {
+        declared_units,
+        units,
+        layers,
+        entity_counts,
+        elements,
+        sources,
+        extent,
+        warnings,
+        binary: groups.binary,
+    })
+}

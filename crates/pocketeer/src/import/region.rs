@@ -1,0 +1,487 @@
+//! Nesting closed contours into pockets with islands.
+//!
+//! Each contour gets a level: 0 when nothing encloses it, else one more than the deepest
+//! contour enclosing it. Material is removed where the deepest enclosing contour has an even
+//! level: level 0 bounds a pocket, level 1 an island, level 2 a pocket inside an island, and so
+//! on. Contours that cross or touch each other (overlapping islands, an island crossing the
+//! wall) are cut at their intersections, and only the pieces with removed material on exactly
+//! one side are kept and stitched into loops: overlapping islands merge, and an island crossing
+//! the wall cuts the wall back. A contour that crosses itself is refused.
+
+use super::chain::ChainedContour;
+use super::error::{fmt_point, ImportError};
+use crate::geom::{
+    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance,
+};
+use std::collections::HashMap;
+
+/// A pocket: the area inside a counter-clockwise boundary and outside its clockwise islands.
+#[derive(Debug, Clone)]
+pub struct Pocket {
+    /// Outer boundary, counter-clockwise.
+    pub boundary: Contour,
+    /// Islands, clockwise.
+    pub islands: Vec<Contour>,
+}
+
+impl Pocket {
+    /// Area of material to remove: boundary area minus island areas.
+    pub fn area(&self) -> f64 {
+        self.boundary.signed_area() + self.islands.iter().map(Contour::signed_area).sum::<f64>()
+    }
+}
+
+/// Pockets found in a drawing.
+#[derive(Debug, Clone, Default)]
+pub struct Regions {
+    /// The pockets, largest first.
+    pub pockets: Vec<Pocket>,
+    /// Level of each input contour (0 = outermost).
+    pub levels: Vec<usize>,
+    /// Remarks (crossing contours merged or cut back).
+    pub warnings: Vec<String>,
+}
+
+/// Where one segment of one contour is.
+#[derive(Clone, Copy)]
+struct SegRef {
+    contour: usize,
+    index: usize,
+}
+
+/// Nests `contours` into pockets. `layer_names` names layers in messages.
+pub fn find_pockets(
+    contours: &[ChainedContour],
+    layer_names: &[String],
+    tol: &Tolerance,
+) -> Result<Regions, ImportError> {
+    let refs: Vec<SegRef> = contours
+        .iter()
+        .enumerate()
+        .flat_map(|(c, cc)| (0..cc.contour.segments.len()).map(move |index| SegRef { contour: c, index }))
+        .collect();
+    let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
+    let boxes: Vec<Aabb> = refs.iter().map(|r| seg(r).bbox().inflated(tol.eps)).collect();
+    let index = BoxIndex::new(&boxes);
+
+    // Cuts on every segment where another contour meets it, and which contours meet.
+    let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
+    let mut cluster: Vec<usize> = (0..contours.len()).collect();
+    let mut crossings: Vec<(usize, usize, Point)> = Vec::new();
+    for (i, j) in index.pairs() {
+        let (a, b) = (refs[i], refs[j]);
+        let hits = intersect(seg(&a), seg(&b), tol.eps);
+        if hits.is_empty() {
+            continue;
+        }
+        if a.contour == b.contour {
+            check_self_crossing(&contours[a.contour], a.index, b.index, &hits, layer_names, tol)?;
+            continue;
+        }
+        for h in hits.iter() {
+            let (pa, pb) = match h {
+                Intersection::Point { point, ta, tb } => (vec![(ta, point)], vec![(tb, point)]),
+                Intersection::Overlap {
+                    a: (a0, a1),
+                    b: (b0, b1),
+                } => {
+                    let (p0, p1) = (seg(&a).point_at(a0), seg(&a).point_at(a1));
+                    (vec![(a0, p0), (a1, p1)], vec![(b0, p0), (b1, p1)])
+                }
+            };
+            crossings.push((a.contour, b.contour, pa[0].1));
+            cuts.entry((a.contour, a.index)).or_default().extend(pa);
+            cuts.entry((b.contour, b.index)).or_default().extend(pb);
+        }
+        union(&mut cluster, a.contour, b.contour);
+    }
+    for c in 0..contours.len() {
+        find(&mut cluster, c);
+    }
+
+    let levels = nesting_levels(contours, &cluster, tol);
+    let mut warnings = Vec::new();
+    let mut reported = std::collections::HashSet::new();
+    for &(a, b, p) in &crossings {
+        if reported.insert((cluster[a], a.min(b), a.max(b))) {
+            let what = if levels[a] == levels[b] {
+                "overlap: merged"
+            } else {
+                "cross: cut back"
+            };
+            warnings.push(format!(
+                "contours on layers '{}' and '{}' meet at {}; they {what}",
+                layer_names.get(contours[a].layer).map_or("?", |s| s.as_str()),
+                layer_names.get(contours[b].layer).map_or("?", |s| s.as_str()),
+                fmt_point(p)
+            ));
+        }
+    }
+
+    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    let contour_index = BoxIndex::new(&contour_boxes);
+    // Deepest level of the contours enclosing p (None outside all), read as "material removed
+    // here" when even.
+    let removed = |p: Point| {
+        contour_index
+            .at_point(p)
+            .filter(|&c| contours[c].contour.contains(p))
+            .map(|c| levels[c])
+            .max()
+            .is_some_and(|l| l % 2 == 0)
+    };
+
+    let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (c, &root) in cluster.iter().enumerate() {
+        members.entry(root).or_default().push(c);
+    }
+    let mut loops: Vec<Contour> = Vec::new();
+    let mut roots: Vec<usize> = members.keys().copied().collect();
+    roots.sort_unstable();
+    for root in roots {
+        let group = &members[&root];
+        if group.len() == 1 {
+            let c = &contours[group[0]].contour;
+            // Alone, a contour bounds removed material on its inside exactly when its level is even.
+            let want_ccw = levels[group[0]] % 2 == 0;
+            loops.push(if c.is_ccw() == want_ccw {
+                c.clone()
+            } else {
+                c.reversed()
+            });
+            continue;
+        }
+        let pieces = boundary_pieces(contours, group, &cuts, &removed, tol);
+        let (stitched, lost) = stitch(pieces, tol);
+        if lost > 0 {
+            warnings.push(format!(
+                "{lost} piece(s) of crossing contours could not be joined into loops and were left out"
+            ));
+        }
+        loops.extend(stitched);
+    }
+
+    let pockets = assemble(loops, &mut warnings);
+    Ok(Regions {
+        pockets,
+        levels,
+        warnings,
+    })
+}
+
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+fn union(parent: &mut [usize], a: usize, b: usize) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        parent[ra.max(rb)] = ra.min(rb);
+    }
+}
+
+/// Refuses a contour whose segments `i` and `j` meet anywhere but at a shared joint.
+fn check_self_crossing(
+    c: &ChainedContour,
+    i: usize,
+    j: usize,
+    hits: &crate::geom::Intersections,
+    layer_names: &[String],
+    tol: &Tolerance,
+) -> Result<(), ImportError> {
+    let segs = &c.contour.segments;
+    let n = segs.len();
+    let mut joints = Vec::new();
+    if (i + 1) % n == j {
+        joints.push(segs[j].start());
+    }
+    if (j + 1) % n == i {
+        joints.push(segs[i].start());
+    }
+    let near_joint = |p: Point| {
+        joints
+            .iter()
+            .any(|q| q.distance(p) <= tol.join.max(100.0 * tol.eps))
+    };
+    for h in hits.iter() {
+        let bad = match h {
+            Intersection::Point { point, .. } => (!near_joint(point)).then_some(point),
+            Intersection::Overlap { a, .. } => Some(segs[i].point_at(0.5 * (a.0 + a.1))),
+        };
+        if let Some(point) = bad {
+            let layer = c.layer;
+            return Err(ImportError::SelfCrossing {
+                layer: layer_names.get(layer).cloned().unwrap_or_default(),
+                point,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Points spread evenly along a contour, for deciding which side of another contour it lies on.
+fn samples(c: &Contour, count: usize) -> Vec<Point> {
+    let total = c.length();
+    let mut out = Vec::with_capacity(count);
+    let mut acc = 0.0;
+    let mut k = 0;
+    for s in &c.segments {
+        let len = s.length();
+        while k < count {
+            let target = (k as f64 + 0.5) / count as f64 * total;
+            if target > acc + len {
+                break;
+            }
+            let t = if len > 0.0 {
+                ((target - acc) / len).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            out.push(s.point_at(t));
+            k += 1;
+        }
+        acc += len;
+    }
+    out
+}
+
+/// Level of each contour: 0 when none encloses it, else one more than the deepest enclosing one.
+fn nesting_levels(contours: &[ChainedContour], cluster: &[usize], tol: &Tolerance) -> Vec<usize> {
+    let n = contours.len();
+    let boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    let index = BoxIndex::new(&boxes);
+    let areas: Vec<f64> = contours.iter().map(|c| c.contour.signed_area().abs()).collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]));
+    let mut levels = vec![0usize; n];
+    let mut done = vec![false; n];
+    for &b in &order {
+        let inner = &contours[b].contour;
+        let probe = samples(inner, 1);
+        let mut level = 0;
+        for a in index.intersecting(&boxes[b]) {
+            if a == b || !done[a] {
+                continue;
+            }
+            let outer = &contours[a].contour;
+            let enclosed = if cluster[a] == cluster[b] {
+                // The two may cross: the side most of the contour lies on decides.
+                let (mut inside, mut outside) = (0, 0);
+                for p in samples(inner, 15) {
+                    if outer
+                        .segments
+                        .iter()
+                        .any(|s| point_distance(s, p) <= tol.join.max(tol.eps))
+                    {
+                        continue;
+                    }
+                    if outer.contains(p) {
+                        inside += 1;
+                    } else {
+                        outside += 1;
+                    }
+                }
+                inside > outside
+            } else {
+                boxes[a].contains_box(&boxes[b]) && probe.first().is_some_and(|&p| outer.contains(p))
+            };
+            if enclosed {
+                level = level.max(levels[a] + 1);
+            }
+        }
+        levels[b] = level;
+        done[b] = true;
+    }
+    levels
+}
+
+/// Pieces of a group of crossing contours that have removed material on exactly one side,
+/// oriented with that material on their left.
+fn boundary_pieces(
+    contours: &[ChainedContour],
+    group: &[usize],
+    cuts: &HashMap<(usize, usize), Vec<(f64, Point)>>,
+    removed: &dyn Fn(Point) -> bool,
+    tol: &Tolerance,
+) -> Vec<Segment> {
+    let mut pieces: Vec<Segment> = Vec::new();
+    for &c in group {
+        for (k, s) in contours[c].contour.segments.iter().enumerate() {
+            let mut at: Vec<(f64, Point)> = cuts.get(&(c, k)).cloned().unwrap_or_default();
+            at.push((0.0, s.start()));
+            at.push((1.0, s.end()));
+            at.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for w in at.windows(2) {
+                let ((t0, p0), (t1, p1)) = (w[0], w[1]);
+                if (t1 - t0) * s.length() <= 10.0 * tol.eps {
+                    continue;
+                }
+                let mut piece = s.sub(t0, t1);
+                // The cut points are where the neighbouring pieces end: use them exactly.
+                if let Segment::Line(l) = &mut piece {
+                    l.start = p0;
+                    l.end = p1;
+                }
+                pieces.push(piece);
+            }
+        }
+    }
+    let pieces = dedup_pieces(pieces, tol);
+    let mut out = Vec::new();
+    for piece in pieces {
+        let mid = piece.point_at(0.5);
+        let normal = piece.tangent_at(0.5).perp();
+        let delta = (piece.length() * 1e-3).clamp(100.0 * tol.eps, 1e-4);
+        let left = removed(mid + normal * delta);
+        let right = removed(mid - normal * delta);
+        if left && !right {
+            out.push(piece);
+        } else if right && !left {
+            out.push(piece.reversed());
+        }
+    }
+    out
+}
+
+/// Removes pieces that coincide with an earlier one (in either direction).
+fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
+    let boxes: Vec<Aabb> = pieces.iter().map(|p| p.bbox()).collect();
+    let index = BoxIndex::new(&boxes);
+    let r = 1e3 * tol.eps;
+    let mut keep = vec![true; pieces.len()];
+    for (i, j) in index.pairs() {
+        if !keep[i] || !keep[j] {
+            continue;
+        }
+        let (a, b) = (&pieces[i], &pieces[j]);
+        let same_ends = (a.start().distance(b.start()) <= r && a.end().distance(b.end()) <= r)
+            || (a.start().distance(b.end()) <= r && a.end().distance(b.start()) <= r);
+        if same_ends && point_distance(b, a.point_at(0.5)) <= r {
+            keep[j] = false;
+        }
+    }
+    pieces
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(p))
+        .collect()
+}
+
+/// Joins pieces end to start into closed loops; at a node where several pieces leave, takes
+/// the one turning most to the left, so that loops touching at a point stay separate. Returns
+/// the loops and how many pieces could not be closed into one.
+fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
+    let r = 100.0 * tol.eps;
+    let cell = |p: Point| ((p.x / r).floor() as i64, (p.y / r).floor() as i64);
+    let mut starts: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        starts.entry(cell(p.start())).or_default().push(i);
+    }
+    let leaving = |p: Point| {
+        let (cx, cy) = cell(p);
+        let mut out = Vec::new();
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                if let Some(v) = starts.get(&(cx + dx, cy + dy)) {
+                    out.extend(v.iter().copied().filter(|&i| pieces[i].start().distance(p) <= r));
+                }
+            }
+        }
+        out
+    };
+    let mut used = vec![false; pieces.len()];
+    let mut loops = Vec::new();
+    let mut lost = 0;
+    for first in 0..pieces.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let mut chain = vec![pieces[first]];
+        let origin = pieces[first].start();
+        loop {
+            let last = chain[chain.len() - 1];
+            if last.end().distance(origin) <= r && (chain.len() > 1 || last.length() > 10.0 * r) {
+                loops.push(Contour::new(chain));
+                break;
+            }
+            let incoming = last.tangent_at(1.0);
+            let next = leaving(last.end())
+                .into_iter()
+                .filter(|&i| !used[i])
+                .max_by(|&a, &b| {
+                    turn_key(incoming, &pieces[a])
+                        .partial_cmp(&turn_key(incoming, &pieces[b]))
+                        .unwrap_or(std::cmp::Ordering::Equal)
+                });
+            match next {
+                Some(i) => {
+                    used[i] = true;
+                    chain.push(pieces[i]);
+                }
+                None => {
+                    lost += chain.len();
+                    break;
+                }
+            }
+        }
+    }
+    (loops, lost)
+}
+
+/// How far left `next` turns after travelling along `incoming`: the turn angle (a reversal
+/// counts as the sharpest right turn), then the curvature.
+fn turn_key(incoming: crate::geom::Vector, next: &Segment) -> (f64, f64) {
+    let out = next.tangent_at(0.0);
+    let mut angle = incoming.cross(out).atan2(incoming.dot(out));
+    if angle >= std::f64::consts::PI - 1e-12 {
+        angle = -std::f64::consts::PI;
+    }
+    let curvature = match next {
+        Segment::Line(_) => 0.0,
+        Segment::Arc(a) => a.sweep.signum() / a.radius,
+    };
+    (angle, curvature)
+}
+
+/// Groups loops into pockets: each clockwise loop goes to the smallest counter-clockwise loop
+/// around it.
+fn assemble(loops: Vec<Contour>, warnings: &mut Vec<String>) -> Vec<Pocket> {
+    let (outer, holes): (Vec<Contour>, Vec<Contour>) = loops.into_iter().partition(Contour::is_ccw);
+    let mut pockets: Vec<Pocket> = outer
+        .into_iter()
+        .map(|boundary| Pocket {
+            boundary,
+            islands: Vec::new(),
+        })
+        .collect();
+    pockets.sort_by(|a, b| b.boundary.signed_area().total_cmp(&a.boundary.signed_area()));
+    let boxes: Vec<Aabb> = pockets.iter().map(|p| p.boundary.bbox()).collect();
+    let index = BoxIndex::new(&boxes);
+    for hole in holes {
+        let Some(&probe) = samples(&hole, 1).first() else {
+            continue;
+        };
+        let owner = index
+            .at_point(probe)
+            .filter(|&k| boxes[k].contains_box(&hole.bbox()) && pockets[k].boundary.contains(probe))
+            .min_by(|&a, &b| {
+                pockets[a]
+                    .boundary
+                    .signed_area()
+                    .total_cmp(&pockets[b].boundary.signed_area())
+            });
+        match owner {
+            Some(k) => pockets[k].islands.push(hole),
+            None => warnings.push(format!(
+                "an island at {} lies in no pocket; ignored",
+                fmt_point(probe)
+            )),
+        }
+    }
+    pockets
+}
