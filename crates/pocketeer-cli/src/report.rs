@@ -45,6 +45,7 @@ struct OpenRow {
     elements: usize,
     start: Point,
     end: Point,
+    nearest_gap_mm: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -59,6 +60,17 @@ struct PocketRow {
 struct IslandRow {
     area_mm2: f64,
     elements: usize,
+}
+
+/// A round join tolerance just above `gap`: 0.0084 → "0.009mm".
+fn suggest_tolerance(gap: f64) -> String {
+    let mut step = 1e-6;
+    while step * 10.0 <= gap {
+        step *= 10.0;
+    }
+    let value = ((gap / step).floor() + 1.0) * step;
+    let decimals = (-step.log10()).round().max(0.0) as usize;
+    format!("{value:.decimals$}mm")
 }
 
 /// Rounds to three decimals, as the report shows areas.
@@ -104,6 +116,7 @@ impl Report {
                 elements: o.elements.len(),
                 start: o.start,
                 end: o.end,
+                nearest_gap_mm: o.nearest_gap,
             })
             .collect();
         let pockets = a
@@ -137,8 +150,16 @@ impl Report {
         }
         warnings.extend(ch.warnings.iter().cloned());
         for o in &ch.open {
+            let hint = match o.nearest_gap {
+                Some(g) if g <= 0.1 => format!(
+                    "; the nearest free end is {g:.4} mm away: --join-tolerance {} would join it",
+                    suggest_tolerance(g)
+                ),
+                Some(g) => format!("; the nearest free end is {g:.3} mm away"),
+                None => String::new(),
+            };
             warnings.push(format!(
-                "open chain of {} element(s) on layer '{}' ignored: free ends at {} and {}",
+                "open chain of {} element(s) on layer '{}' ignored: free ends at {} and {}{hint}",
                 o.elements.len(),
                 layer_name(o.layer),
                 fmt_point(o.start),

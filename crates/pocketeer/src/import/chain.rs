@@ -32,6 +32,9 @@ pub struct OpenChain {
     pub end: Point,
     /// The drawing elements of the chain.
     pub elements: Vec<usize>,
+    /// Distance from a free end of this chain to the nearest other free end on its layer (its
+    /// own other end included): the join tolerance that would close the gap.
+    pub nearest_gap: Option<f64>,
 }
 
 /// The result of chaining.
@@ -163,10 +166,42 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
                 start,
                 end,
                 elements: walk.iter().map(|w| w.0).collect(),
+                nearest_gap: None,
             });
         }
     }
+    measure_gaps(&mut out.open);
     out
+}
+
+/// Fills in [`OpenChain::nearest_gap`] for every open chain.
+fn measure_gaps(open: &mut [OpenChain]) {
+    let ends: Vec<(usize, Point)> = open
+        .iter()
+        .flat_map(|o| [(o.layer, o.start), (o.layer, o.end)])
+        .collect();
+    let boxes: Vec<Aabb> = ends.iter().map(|e| Aabb::from_points(e.1, e.1)).collect();
+    let index = BoxIndex::new(&boxes);
+    for (k, o) in open.iter_mut().enumerate() {
+        let mut best: Option<f64> = None;
+        for (me, p) in [(2 * k, o.start), (2 * k + 1, o.end)] {
+            // Grow the search box until it finds another end or covers a drawing-sized area.
+            let mut r = 1e-3;
+            while r < 1e4 {
+                let near = index
+                    .intersecting(&Aabb::from_points(p, p).inflated(r))
+                    .filter(|&e| e != me && ends[e].0 == o.layer)
+                    .map(|e| ends[e].1.distance(p))
+                    .fold(None, |b: Option<f64>, d| Some(b.map_or(d, |b| b.min(d))));
+                if let Some(d) = near {
+                    best = Some(best.map_or(d, |b| b.min(d)));
+                    break;
+                }
+                r *= 10.0;
+            }
+        }
+        o.nearest_gap = best;
+    }
 }
 
 /// Marks elements lying entirely on another element of the same layer as dead; returns how many.

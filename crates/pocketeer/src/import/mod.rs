@@ -9,6 +9,7 @@ mod entities;
 pub mod error;
 mod expand;
 pub mod region;
+pub mod simple;
 pub mod units;
 
 pub use chain::{chain, ChainedContour, Chains, OpenChain};

@@ -10,6 +10,7 @@
 
 use super::chain::ChainedContour;
 use super::error::{fmt_point, ImportError};
+use super::simple::make_simple;
 use crate::geom::{
     intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance,
 };
@@ -55,6 +56,24 @@ pub fn find_pockets(
     layer_names: &[String],
     tol: &Tolerance,
 ) -> Result<Regions, ImportError> {
+    let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
+    let mut warnings = Vec::new();
+    let mut simple = Vec::with_capacity(contours.len());
+    for c in contours {
+        let (contour, removed) = make_simple(&c.contour, tol).map_err(|x| ImportError::SelfCrossing {
+            layer: layer_name(c),
+            point: x.point,
+        })?;
+        for p in removed {
+            warnings.push(format!(
+                "a sliver loop where the contour on layer '{}' crosses itself at {} removed",
+                layer_name(c),
+                fmt_point(p)
+            ));
+        }
+        simple.push(ChainedContour { contour, ..c.clone() });
+    }
+    let contours = &simple[..];
     let refs: Vec<SegRef> = contours
         .iter()
         .enumerate()
@@ -75,8 +94,7 @@ pub fn find_pockets(
             continue;
         }
         if a.contour == b.contour {
-            check_self_crossing(&contours[a.contour], a.index, b.index, &hits, layer_names, tol)?;
-            continue;
+            continue; // made simple above
         }
         for h in hits.iter() {
             let (pa, pb) = match h {
@@ -100,7 +118,6 @@ pub fn find_pockets(
     }
 
     let levels = nesting_levels(contours, &cluster, tol);
-    let mut warnings = Vec::new();
     let mut reported = std::collections::HashSet::new();
     for &(a, b, p) in &crossings {
         if reported.insert((cluster[a], a.min(b), a.max(b))) {
@@ -182,45 +199,6 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
     if ra != rb {
         parent[ra.max(rb)] = ra.min(rb);
     }
-}
-
-/// Refuses a contour whose segments `i` and `j` meet anywhere but at a shared joint.
-fn check_self_crossing(
-    c: &ChainedContour,
-    i: usize,
-    j: usize,
-    hits: &crate::geom::Intersections,
-    layer_names: &[String],
-    tol: &Tolerance,
-) -> Result<(), ImportError> {
-    let segs = &c.contour.segments;
-    let n = segs.len();
-    let mut joints = Vec::new();
-    if (i + 1) % n == j {
-        joints.push(segs[j].start());
-    }
-    if (j + 1) % n == i {
-        joints.push(segs[i].start());
-    }
-    let near_joint = |p: Point| {
-        joints
-            .iter()
-            .any(|q| q.distance(p) <= tol.join.max(100.0 * tol.eps))
-    };
-    for h in hits.iter() {
-        let bad = match h {
-            Intersection::Point { point, .. } => (!near_joint(point)).then_some(point),
-            Intersection::Overlap { a, .. } => Some(segs[i].point_at(0.5 * (a.0 + a.1))),
-        };
-        if let Some(point) = bad {
-            let layer = c.layer;
-            return Err(ImportError::SelfCrossing {
-                layer: layer_names.get(layer).cloned().unwrap_or_default(),
-                point,
-            });
-        }
-    }
-    Ok(())
 }
 
 /// Points spread evenly along a contour, for deciding which side of another contour it lies on.
