@@ -63,6 +63,29 @@ type End = (usize, u8);
 pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     let mut out = Chains::default();
     let mut alive = vec![true; elements.len()];
+
+    // A closed polyline is a contour as drawn: it is not taken apart and chained with others,
+    // so that two polylines sharing an edge both stay whole.
+    let mut groups: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (i, e) in elements.iter().enumerate() {
+        if let Some(g) = e.closed_group {
+            groups.entry(g).or_default().push(i);
+            alive[i] = false;
+        }
+    }
+    for members in groups.values() {
+        let segs: Vec<Segment> = members.iter().map(|&i| elements[i].segment).collect();
+        if segs.iter().map(Segment::length).sum::<f64>() <= tol.join {
+            out.zero_length_dropped += members.len();
+            continue;
+        }
+        out.contours.push(ChainedContour {
+            contour: Contour::new(close_ring(segs)),
+            layer: elements[members[0]].layer,
+            elements: members.clone(),
+        });
+    }
+
     out.duplicates_dropped = drop_covered(elements, &mut alive, tol);
 
     // Full circles are contours by themselves (or points, when smaller than the tolerance).
@@ -171,6 +194,8 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
         }
     }
     measure_gaps(&mut out.open);
+    // Report contours in drawing order.
+    out.contours.sort_by_key(|c| c.elements.iter().copied().min());
     out
 }
 
@@ -459,6 +484,28 @@ fn split_at_repeated_nodes(walk: &[(usize, bool)], nodes: &Nodes) -> Vec<Vec<(us
     loops
 }
 
+/// Segments drawn end to start as a ring, each end moved exactly onto the next start.
+fn close_ring(mut segs: Vec<Segment>) -> Vec<Segment> {
+    let n = segs.len();
+    for k in 0..n {
+        let next = segs[(k + 1) % n].start();
+        if segs[k].end() != next {
+            segs[k] = with_ends(&segs[k], segs[k].start(), next);
+        }
+    }
+    segs
+}
+
+/// `seg` with its ends moved to `a` and `b` (an arc keeps its bulge).
+fn with_ends(seg: &Segment, a: Point, b: Point) -> Segment {
+    match seg {
+        Segment::Line(_) => Segment::Line(Line::new(a, b)),
+        Segment::Arc(arc) => Arc::from_bulge(a, b, arc.bulge())
+            .map(Segment::Arc)
+            .unwrap_or(Segment::Line(Line::new(a, b))),
+    }
+}
+
 /// Element `i` oriented (`rev`) and with its ends moved onto their nodes.
 fn snapped(seg: &Segment, rev: bool, i: usize, nodes: &Nodes) -> Segment {
     let (a, b) = (nodes.point((i, 0)), nodes.point((i, 1)));
@@ -476,9 +523,7 @@ fn snapped(seg: &Segment, rev: bool, i: usize, nodes: &Nodes) -> Segment {
             } else if a.distance(arc.start()) == 0.0 && b.distance(arc.end()) == 0.0 {
                 *seg
             } else {
-                Arc::from_bulge(a, b, arc.bulge())
-                    .map(Segment::Arc)
-                    .unwrap_or(Segment::Line(Line::new(a, b)))
+                with_ends(seg, a, b)
             }
         }
     };

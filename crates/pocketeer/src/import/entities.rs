@@ -7,8 +7,14 @@ use std::f64::consts::TAU;
 
 /// What reading one entity gave.
 pub enum Drawn {
-    /// The curves it draws (possibly none, e.g. a one-point polyline).
-    Curves(Vec<Curve>),
+    /// The curves it draws (possibly none, e.g. a one-point polyline); `closed` when they form
+    /// a closed contour by themselves, in order (a closed polyline).
+    Curves {
+        /// The curves.
+        curves: Vec<Curve>,
+        /// True for a closed polyline.
+        closed: bool,
+    },
     /// An entity type that draws no outline (text, dimension, hatch, ...).
     Ignored,
 }
@@ -53,6 +59,7 @@ impl Fields<'_> {
 /// The curves of a drawing entity. Errors are messages about this entity.
 pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
     let f = Fields(e);
+    let mut closed = false;
     let curves = match e.kind.as_str() {
         "LINE" => {
             let a = f.point(10).ok_or("LINE without a start point")?;
@@ -133,7 +140,7 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
                     _ => {}
                 }
             }
-            let closed = f.int_or(70, 0) & 1 == 1;
+            closed = f.int_or(70, 0) & 1 == 1;
             polyline(&verts, closed, &f.ocs(f.real_or(38, 0.0)))
         }
         "POLYLINE" => {
@@ -159,7 +166,8 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
             } else {
                 f.ocs(f.real_or(30, 0.0))
             };
-            polyline(&verts, flags & 1 == 1, &m)
+            closed = flags & 1 == 1;
+            polyline(&verts, closed, &m)
         }
         "SPLINE" => spline(&f)?,
         "TEXT" | "MTEXT" | "DIMENSION" | "HATCH" | "POINT" | "SOLID" | "3DFACE" | "ATTDEF" | "ATTRIB"
@@ -168,7 +176,7 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
         | "ACAD_TABLE" | "MLINE" => return Ok(Drawn::Ignored),
         _ => return Ok(Drawn::Ignored),
     };
-    Ok(Drawn::Curves(curves))
+    Ok(Drawn::Curves { curves, closed })
 }
 
 /// Lines and bulge arcs through `verts` (point, bulge to the next), mapped by `m`.

@@ -45,9 +45,25 @@ impl fmt::Display for EntityRef {
     }
 }
 
+/// A number as a reader wants it: plain when moderate, in exponent form when huge.
+pub fn fmt_number(x: f64) -> String {
+    if x.is_finite() && x.abs() < 1e7 {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Formats a point as `(x, y)` with four decimals.
 pub fn fmt_point(p: Point) -> String {
-    format!("({:.4}, {:.4})", p.x, p.y)
+    let f = |x: f64| {
+        if x.is_finite() && x.abs() < 1e9 {
+            format!("{x:.4}")
+        } else {
+            format!("{x:e}")
+        }
+    };
+    format!("({}, {})", f(p.x), f(p.y))
 }
 
 /// Why a drawing could not be imported.

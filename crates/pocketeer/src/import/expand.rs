@@ -20,6 +20,9 @@ pub struct Placed {
     pub layer: String,
     /// The entity (inside blocks, the innermost one), for messages.
     pub entity: EntityRef,
+    /// For the curves of one closed polyline (one placement of it): a number shared by them,
+    /// which are a contour by themselves, in order.
+    pub closed_group: Option<usize>,
 }
 
 /// Walks model space, expanding INSERTs, and collects every curve.
@@ -30,6 +33,7 @@ pub struct Expander<'a> {
     /// Remarks (unknown blocks).
     pub warnings: Vec<String>,
     stack: Vec<String>,
+    groups: usize,
 }
 
 impl<'a> Expander<'a> {
@@ -40,6 +44,7 @@ impl<'a> Expander<'a> {
             placed: Vec::new(),
             warnings: Vec::new(),
             stack: Vec::new(),
+            groups: 0,
         }
     }
 
@@ -62,7 +67,11 @@ impl<'a> Expander<'a> {
                 continue;
             }
             match curves_of(e) {
-                Ok(Drawn::Curves(curves)) => {
+                Ok(Drawn::Curves { curves, closed }) => {
+                    let closed_group = closed.then(|| {
+                        self.groups += 1;
+                        self.groups
+                    });
                     for c in curves {
                         let curve = c.transformed(m);
                         if let Err(p) = curve.check_coordinates(super::MAX_COORDINATE) {
@@ -70,8 +79,8 @@ impl<'a> Expander<'a> {
                                 entity: e.reference(&layer),
                                 what: format!(
                                     "coordinate ({}, {}) is not a number or lies beyond ±{:e} mm",
-                                    p.x,
-                                    p.y,
+                                    super::error::fmt_number(p.x),
+                                    super::error::fmt_number(p.y),
                                     super::MAX_COORDINATE
                                 ),
                             });
@@ -80,6 +89,7 @@ impl<'a> Expander<'a> {
                             curve,
                             layer: layer.clone(),
                             entity: e.reference(&layer),
+                            closed_group,
                         });
                     }
                     if self.placed.len() > MAX_CURVES {

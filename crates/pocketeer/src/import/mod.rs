@@ -58,6 +58,9 @@ pub struct Element {
     pub layer: usize,
     /// Index into [`Drawing::sources`]: the entity it was drawn by.
     pub source: usize,
+    /// Set for the elements of one closed polyline: they form a contour by themselves, in order,
+    /// and are not chained with others.
+    pub closed_group: Option<usize>,
 }
 
 /// A drawing read from DXF: every outline element in millimetres, with what was seen on the way.
@@ -172,6 +175,7 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
                 segment: s,
                 layer,
                 source,
+                closed_group: p.closed_group,
             });
         }
     }

@@ -14,7 +14,7 @@ use super::simple::make_simple;
 use crate::geom::{
     intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance,
 };
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// A pocket: the area inside a counter-clockwise boundary and outside its clockwise islands.
 #[derive(Debug, Clone)]
@@ -117,8 +117,9 @@ pub fn find_pockets(
         find(&mut cluster, c);
     }
 
-    let levels = nesting_levels(contours, &cluster, tol);
-    let mut reported = std::collections::HashSet::new();
+    let crossing: HashSet<(usize, usize)> = crossings.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
+    let levels = nesting_levels(contours, &crossing, tol);
+    let mut reported = HashSet::new();
     for &(a, b, p) in &crossings {
         if reported.insert((cluster[a], a.min(b), a.max(b))) {
             let what = if levels[a] == levels[b] {
@@ -227,8 +228,18 @@ fn samples(c: &Contour, count: usize) -> Vec<Point> {
     out
 }
 
-/// Level of each contour: 0 when none encloses it, else one more than the deepest enclosing one.
-fn nesting_levels(contours: &[ChainedContour], cluster: &[usize], tol: &Tolerance) -> Vec<usize> {
+/// Level of each contour: 0 when none encloses it, else one more than the deepest contour
+/// that encloses it.
+///
+/// Two contours that cross enclose neither, strictly. Where a contour crosses a larger one that
+/// bounds a pocket (even level) and lies mostly inside it, it is taken as an island of that pocket
+/// crossing its wall, so the wall is cut back. Contours crossing at an odd level (islands) keep
+/// the same level and are merged.
+fn nesting_levels(
+    contours: &[ChainedContour],
+    crossing: &HashSet<(usize, usize)>,
+    tol: &Tolerance,
+) -> Vec<usize> {
     let n = contours.len();
     let boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
     let index = BoxIndex::new(&boxes);
@@ -246,24 +257,8 @@ fn nesting_levels(contours: &[ChainedContour], cluster: &[usize], tol: &Toleranc
                 continue;
             }
             let outer = &contours[a].contour;
-            let enclosed = if cluster[a] == cluster[b] {
-                // The two may cross: the side most of the contour lies on decides.
-                let (mut inside, mut outside) = (0, 0);
-                for p in samples(inner, 15) {
-                    if outer
-                        .segments
-                        .iter()
-                        .any(|s| point_distance(s, p) <= tol.join.max(tol.eps))
-                    {
-                        continue;
-                    }
-                    if outer.contains(p) {
-                        inside += 1;
-                    } else {
-                        outside += 1;
-                    }
-                }
-                inside > outside
+            let enclosed = if crossing.contains(&(a.min(b), a.max(b))) {
+                levels[a] % 2 == 0 && mostly_inside(inner, outer, tol)
             } else {
                 boxes[a].contains_box(&boxes[b]) && probe.first().is_some_and(|&p| outer.contains(p))
             };
@@ -275,6 +270,27 @@ fn nesting_levels(contours: &[ChainedContour], cluster: &[usize], tol: &Toleranc
         done[b] = true;
     }
     levels
+}
+
+/// True when at least half of `inner`'s length (sampled, ignoring points on `outer`) lies
+/// inside `outer`.
+fn mostly_inside(inner: &Contour, outer: &Contour, tol: &Tolerance) -> bool {
+    let (mut inside, mut outside) = (0, 0);
+    for p in samples(inner, 15) {
+        if outer
+            .segments
+            .iter()
+            .any(|s| point_distance(s, p) <= tol.join.max(tol.eps))
+        {
+            continue;
+        }
+        if outer.contains(p) {
+            inside += 1;
+        } else {
+            outside += 1;
+        }
+    }
+    inside > 0 && inside >= outside
 }
 
 /// Pieces of a group of crossing contours that have removed material on exactly one side,

@@ -1,0 +1,3 @@
+//! Writing results out: DXF for CAD programs.
+
+pub mod dxf;

@@ -1,0 +1,81 @@
+//! Real drawings from other CAD programs (copied from the shared corpus, see
+//! fixtures/corpus/LICENSES.md), with areas measured independently.
+
+mod common;
+
+use common::fixture;
+use pocketeer::import::ImportError;
+use pocketeer::{analyze, read_drawing, Analysis, ImportOptions};
+
+fn analyze_file(rel: &str) -> Result<Analysis, ImportError> {
+    let bytes = std::fs::read(fixture(rel)).expect("fixture exists");
+    analyze(&bytes, &ImportOptions::default())
+}
+
+#[test]
+fn empty_handles_is_one_pocket_with_one_island() {
+    let a = analyze_file("corpus/mit/empty_handles.dxf").unwrap();
+    assert_eq!(a.regions.pockets.len(), 1);
+    let p = &a.regions.pockets[0];
+    assert!((p.boundary.signed_area() - 56100.0).abs() < 1e-6);
+    assert_eq!(p.islands.len(), 1);
+    assert!((p.islands[0].signed_area() + 1292.0).abs() < 1e-6);
+}
+
+#[test]
+fn rotated_inserts_make_one_contour_of_2000() {
+    let a = analyze_file("corpus/cc0/example013.dxf").unwrap();
+    assert_eq!(a.chains.contours.len(), 1);
+    assert!((a.regions.pockets[0].area() - 2000.0).abs() < 1e-6);
+}
+
+#[test]
+fn binary_dxf_r12_and_r2000_are_read() {
+    for f in ["corpus/mit/bin_dxf_r12.dxf", "corpus/mit/bin_dxf_r2000.dxf"] {
+        let bytes = std::fs::read(fixture(f)).unwrap();
+        let groups = pocketeer::import::dxf::read_groups(&bytes).unwrap();
+        assert!(groups.binary && groups.saw_eof, "{f}");
+        assert!(
+            groups
+                .groups
+                .iter()
+                .any(|g| g.is(0, "ENTITIES") || g.is(2, "ENTITIES")),
+            "{f}"
+        );
+    }
+    // The R12 file draws an open polyline: read, then refused for having no closed contour.
+    let r12 = analyze_file("corpus/mit/bin_dxf_r12.dxf").unwrap_err();
+    assert!(matches!(r12, ImportError::NoClosedContour(_)), "{r12}");
+    // The R2000 file holds a single TEXT.
+    let r2000 = analyze_file("corpus/mit/bin_dxf_r2000.dxf").unwrap_err();
+    assert!(r2000.to_string().contains("1 TEXT"), "{r2000}");
+}
+
+#[test]
+fn bytes_after_eof_are_ignored() {
+    let a = analyze_file("corpus/mit/R12_with_trash_beyond_EOF.dxf").unwrap();
+    assert_eq!(a.regions.pockets.len(), 1);
+}
+
+#[test]
+fn a_damaged_file_is_read_as_far_as_it_makes_sense() {
+    // Several ENTITIES sections, a header variable after ENDSEC, no EOF.
+    let bytes = std::fs::read(fixture("corpus/mit/recover01.dxf")).unwrap();
+    let d = read_drawing(&bytes, &ImportOptions::default()).unwrap();
+    assert!(d.warnings.iter().any(|w| w.contains("EOF")));
+    assert_eq!(d.entity_counts.get("LINE"), Some(&1441));
+}
+
+#[test]
+fn every_fixture_imports_or_is_refused_with_a_message() {
+    for dir in ["corpus/cc0", "corpus/mit"] {
+        for entry in std::fs::read_dir(fixture(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            let bytes = std::fs::read(&path).unwrap();
+            match analyze(&bytes, &ImportOptions::default()) {
+                Ok(a) => assert!(!a.regions.pockets.is_empty(), "{}", path.display()),
+                Err(e) => assert!(!e.to_string().is_empty()),
+            }
+        }
+    }
+}
