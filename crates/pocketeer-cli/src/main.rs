@@ -37,6 +37,10 @@ struct DrawingArgs {
     /// End points closer than this are joined (a length: 0.001, 0.01mm, 0.0001in).
     #[arg(long, default_value = "0.001", value_parser = length::parse_nonneg_length)]
     join_tolerance: f64,
+    /// Ignore open chains even where they surround closed contours (refused by default: such a
+    /// chain is most likely a pocket outline with a gap).
+    #[arg(long)]
+    ignore_open: bool,
 }
 
 #[derive(Args)]
@@ -58,6 +62,7 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
         layers: args.layers.clone(),
         units: args.units,
         join_tolerance: args.join_tolerance,
+        ignore_open: args.ignore_open,
     };
     pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}")))
 }
@@ -65,14 +70,27 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
 fn inspect(args: &InspectArgs) -> Result<(), Failure> {
     let analysis = read_analysis(&args.drawing)?;
     let report = report::Report::new(&args.drawing.file.display().to_string(), &analysis);
-    if args.json {
-        let text =
+    let text = if args.json {
+        let mut t =
             serde_json::to_string_pretty(&report).map_err(|e| Failure(format!("cannot write JSON: {e}")))?;
-        println!("{text}");
+        t.push('\n');
+        t
     } else {
-        print!("{}", report.to_text());
+        report.to_text()
+    };
+    emit(&text)
+}
+
+/// Writes to standard output; a reader that stops early (`| head`) is not an error.
+fn emit(text: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(Failure(format!("cannot write the report: {e}")))
+        }
+        _ => Ok(()),
     }
-    Ok(())
 }
 
 fn main() -> ExitCode {

@@ -58,6 +58,9 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
             ends.join(", ")
         )));
     }
+    if !options.ignore_open {
+        refuse_open_outlines(&drawing, &chains)?;
+    }
     let regions = import::find_pockets(&chains.contours, &drawing.layers, &tolerance)?;
     Ok(Analysis {
         drawing,
@@ -65,4 +68,31 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
         regions,
         tolerance,
     })
+}
+
+/// Refuses a drawing where an open chain surrounds closed contours: pocketing the contours
+/// inside a broken outline would cut its islands as if they were pockets.
+fn refuse_open_outlines(drawing: &Drawing, chains: &import::Chains) -> Result<(), ImportError> {
+    let boxes: Vec<geom::Aabb> = chains.contours.iter().map(|c| c.contour.bbox()).collect();
+    let index = geom::BoxIndex::new(&boxes);
+    for o in &chains.open {
+        let extent = o.elements.iter().fold(geom::Aabb::EMPTY, |b, &e| {
+            b.union(&drawing.elements[e].segment.bbox())
+        });
+        let surrounded = index
+            .intersecting(&extent)
+            .filter(|&k| extent.contains_box(&boxes[k]) && boxes[k] != extent)
+            .count();
+        if surrounded > 0 {
+            return Err(ImportError::OpenOutline {
+                layer: drawing.layers.get(o.layer).cloned().unwrap_or_default(),
+                elements: o.elements.len(),
+                start: o.start,
+                end: o.end,
+                surrounded,
+                gap: o.nearest_gap,
+            });
+        }
+    }
+    Ok(())
 }

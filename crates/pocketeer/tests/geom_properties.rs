@@ -166,3 +166,54 @@ proptest! {
         prop_assert!((signed_area(&moved) - area).abs() <= 1e-9 * scale);
     }
 }
+
+/// Winding number of a closed chain of straight lines by the classic crossing count.
+fn polygon_winding(pts: &[Point], p: Point) -> i32 {
+    let mut w = 0;
+    for k in 0..pts.len() {
+        let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+        let side = (b - a).cross(p - a);
+        if a.y <= p.y && b.y > p.y && side > 0.0 {
+            w += 1;
+        } else if b.y <= p.y && a.y > p.y && side < 0.0 {
+            w -= 1;
+        }
+    }
+    w
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    #[test]
+    fn winding_number_agrees_with_a_fine_polygon(
+        pts in prop::collection::vec((point(), -3.0..3.0f64, any::<bool>()), 2..8),
+        probes in prop::collection::vec(point(), 20),
+    ) {
+        let n = pts.len();
+        let segs: Vec<Segment> = (0..n).filter_map(|i| {
+            let (a, bulge, is_arc) = pts[i];
+            let b = pts[(i + 1) % n].0;
+            if a.distance(b) < 1e-3 { return None; }
+            Some(match (is_arc, Arc::from_bulge(a, b, bulge)) {
+                (true, Some(arc)) => Segment::Arc(arc),
+                _ => Segment::Line(Line::new(a, b)),
+            })
+        }).collect();
+        prop_assume!(segs.len() >= 2);
+        let mut poly = Vec::new();
+        for s in &segs {
+            let k = if matches!(s, Segment::Arc(_)) { 4000 } else { 1 };
+            for i in 0..k {
+                poly.push(s.point_at(i as f64 / k as f64));
+            }
+        }
+        for p in probes {
+            // Points on (or within the flattening error of) the curve have no defined winding.
+            if segs.iter().any(|s| point_distance(s, p) < 1e-2) {
+                continue;
+            }
+            prop_assert_eq!(pocketeer::geom::winding_number(&segs, p), polygon_winding(&poly, p), "at {:?}", p);
+        }
+    }
+}

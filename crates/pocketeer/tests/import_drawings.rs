@@ -510,3 +510,69 @@ fn refusals_name_what_is_wrong() {
         Err(ImportError::NotDxf(_))
     ));
 }
+
+#[test]
+fn an_outline_with_a_gap_around_islands_is_refused() {
+    // The wall misses its start by 0.5 mm: pocketing the island alone would be wrong.
+    let wall = lwpoly(
+        "0",
+        &[
+            (0.5, 0.0, 0.0),
+            (100.0, 0.0, 0.0),
+            (100.0, 60.0, 0.0),
+            (0.0, 60.0, 0.0),
+            (0.0, 0.0, 0.0),
+        ],
+        false,
+    );
+    let d = Drawing::new(vec![wall, circle("0", 50.0, 30.0, 10.0)]);
+    let err = read_err(&d);
+    let msg = err.to_string();
+    assert!(
+        matches!(err, ImportError::OpenOutline { surrounded: 1, .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("(0.5000, 0.0000)") && msg.contains("0.5000 mm"),
+        "{msg}"
+    );
+    let ignore = ImportOptions {
+        ignore_open: true,
+        ..Default::default()
+    };
+    let a = analyze(d.text().as_bytes(), &ignore).unwrap();
+    assert_eq!(a.regions.pockets.len(), 1);
+}
+
+#[test]
+fn a_closed_polyline_without_area_is_not_a_contour() {
+    let there_and_back = lwpoly("0", &[(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)], true);
+    let a = read(&Drawing::new(vec![
+        there_and_back,
+        rect_poly("0", 20.0, 0.0, 30.0, 10.0),
+    ]));
+    assert_eq!(a.chains.contours.len(), 1);
+    assert!(a.chains.warnings.iter().any(|w| w.contains("encloses no area")));
+}
+
+#[test]
+fn old_style_polylines_with_vertex_bulges() {
+    // POLYLINE / VERTEX / SEQEND: a 20 x 10 slot with half-circle ends (bulge 1).
+    let mut ents = vec![Entity::new("POLYLINE", "0")
+        .g(66, 1)
+        .g(70, 1)
+        .g(10, 0)
+        .g(20, 0)
+        .g(30, 0)];
+    for (x, y, b) in [
+        (0.0, 0.0, 0.0),
+        (20.0, 0.0, 1.0),
+        (20.0, 10.0, 0.0),
+        (0.0, 10.0, 1.0),
+    ] {
+        ents.push(Entity::new("VERTEX", "0").g(10, x).g(20, y).g(42, b));
+    }
+    ents.push(Entity::new("SEQEND", "0"));
+    let a = read(&Drawing::new(ents));
+    assert!(close(pockets(&a)[0].0, 200.0 + 25.0 * PI, 1e-9));
+}

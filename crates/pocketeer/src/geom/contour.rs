@@ -1,7 +1,7 @@
 //! Closed contours of lines and arcs: area, orientation, point containment.
 
-use super::{Aabb, Point, Segment, Vector};
-use std::f64::consts::TAU;
+use super::{Aabb, Point, Segment};
+use std::f64::consts::PI;
 
 /// A closed chain of segments, each starting where the previous one ends and the last ending
 /// where the first starts.
@@ -73,40 +73,71 @@ pub fn signed_area(segments: &[Segment]) -> f64 {
     0.5 * segments.iter().map(|s| s.area_term(o)).sum::<f64>()
 }
 
-/// Angle swept by `seg` as seen from `p`, signed counter-clockwise.
-fn swept_angle(seg: &Segment, p: Point) -> f64 {
-    let (a, b) = (seg.start() - p, seg.end() - p);
-    let chord_angle = a.cross(b).atan2(a.dot(b));
+/// Signed crossings of the ray from `p` towards +x with the piece from `a` to `b` whose points
+/// between have abscissa `x_at(y)`: +1 upwards, -1 downwards, 0 when it passes left of `p`.
+/// Half-open in y, so that a ray through a joint counts it once.
+fn ray_crossing(a: Point, b: Point, p: Point, x_at: impl Fn(f64) -> f64) -> i32 {
+    let up = a.y <= p.y && b.y > p.y;
+    let down = b.y <= p.y && a.y > p.y;
+    if !(up || down) || x_at(p.y) <= p.x {
+        return 0;
+    }
+    if up {
+        1
+    } else {
+        -1
+    }
+}
+
+/// Winding contribution of one segment around `p` (the signed crossings of a ray to +x).
+fn crossings(seg: &Segment, p: Point) -> i32 {
+    let b = seg.bbox();
+    if p.y < b.min.y || p.y > b.max.y || p.x >= b.max.x {
+        return 0;
+    }
     match seg {
-        Segment::Line(_) => chord_angle,
+        Segment::Line(l) => ray_crossing(l.start, l.end, p, |y| {
+            let (a, d) = (l.start, l.end - l.start);
+            a.x + (y - a.y) * d.x / d.y
+        }),
         Segment::Arc(arc) => {
-            // The arc and its chord enclose a circular segment; if p lies in it, the arc winds
-            // once more around p than the chord does.
-            let inside_circle = (p - arc.center).length_sq() < arc.radius * arc.radius;
-            if !inside_circle {
-                return chord_angle;
+            // Split the arc where its tangent is horizontal (top and bottom of the circle): each
+            // piece is monotone in y and lies in one half of the circle.
+            let mut cuts = vec![0.0];
+            let (a0, sw) = (arc.start_angle, arc.sweep);
+            let (lo, hi) = (a0.min(a0 + sw), a0.max(a0 + sw));
+            let mut angle = PI / 2.0 + ((lo - PI / 2.0) / PI).ceil() * PI;
+            while angle < hi {
+                if angle > lo {
+                    cuts.push((angle - a0) / sw);
+                }
+                angle += PI;
             }
-            let chord: Vector = seg.end() - seg.start();
-            let in_segment = if arc.is_full_circle() || chord.length_sq() == 0.0 {
-                true
-            } else {
-                let side_p = chord.cross(p - seg.start());
-                let side_arc = chord.cross(arc.point_at(0.5) - seg.start());
-                side_p * side_arc > 0.0
-            };
-            if in_segment {
-                chord_angle + TAU * arc.sweep.signum()
-            } else {
-                chord_angle
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup();
+            cuts.push(1.0);
+            let mut total = 0;
+            for w in cuts.windows(2) {
+                let (q0, q1) = (arc.point_at(w[0]), arc.point_at(w[1]));
+                let right = arc.angle_at(0.5 * (w[0] + w[1])).cos() > 0.0;
+                total += ray_crossing(q0, q1, p, |y| {
+                    let dy = y - arc.center.y;
+                    let dx = ((arc.radius - dy) * (arc.radius + dy)).max(0.0).sqrt();
+                    if right {
+                        arc.center.x + dx
+                    } else {
+                        arc.center.x - dx
+                    }
+                });
             }
+            total
         }
     }
 }
 
-/// Winding number of closed chain `segments` around `p`.
+/// Winding number of closed chain `segments` around `p` (for `p` not on the chain).
 pub fn winding_number(segments: &[Segment], p: Point) -> i32 {
-    let total: f64 = segments.iter().map(|s| swept_angle(s, p)).sum();
-    (total / TAU).round() as i32
+    segments.iter().map(|s| crossings(s, p)).sum()
 }
 
 #[cfg(test)]

@@ -75,12 +75,23 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     }
     for members in groups.values() {
         let segs: Vec<Segment> = members.iter().map(|&i| elements[i].segment).collect();
-        if segs.iter().map(Segment::length).sum::<f64>() <= tol.join {
+        let length: f64 = segs.iter().map(Segment::length).sum();
+        if length <= tol.join {
             out.zero_length_dropped += members.len();
             continue;
         }
+        let contour = Contour::new(close_ring(segs));
+        if contour.signed_area().abs() <= tol.join * length && runs_back_over_itself(&contour.segments, tol) {
+            // Drawn there and back again: a line, not an outline.
+            out.warnings.push(format!(
+                "a closed polyline of {} element(s) at {} encloses no area; ignored",
+                members.len(),
+                fmt_point(contour.segments[0].start())
+            ));
+            continue;
+        }
         out.contours.push(ChainedContour {
-            contour: Contour::new(close_ring(segs)),
+            contour,
             layer: elements[members[0]].layer,
             elements: members.clone(),
         });
@@ -482,6 +493,15 @@ fn split_at_repeated_nodes(walk: &[(usize, bool)], nodes: &Nodes) -> Vec<Vec<(us
         loops.push(stack);
     }
     loops
+}
+
+/// True when every segment lies on another one: a ring drawn there and back again.
+fn runs_back_over_itself(segs: &[Segment], tol: &Tolerance) -> bool {
+    segs.iter().enumerate().all(|(i, s)| {
+        segs.iter()
+            .enumerate()
+            .any(|(j, o)| i != j && covers(o, s, tol.join))
+    })
 }
 
 /// Segments drawn end to start as a ring, each end moved exactly onto the next start.

@@ -120,6 +120,26 @@ pub enum ImportError {
     /// No closed contour could be formed.
     #[error("no closed contour: {0}")]
     NoClosedContour(String),
+    /// An open chain surrounds closed contours: most likely a pocket outline that does not close.
+    #[error(
+        "the open chain of {elements} element(s) on layer '{layer}' (free ends at {} and {}) surrounds {surrounded} closed contour(s): it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
+        fmt_point(*.start), fmt_point(*.end),
+        .gap.map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
+    )]
+    OpenOutline {
+        /// Layer of the chain.
+        layer: String,
+        /// Number of elements in the chain.
+        elements: usize,
+        /// First free end.
+        start: Point,
+        /// Last free end.
+        end: Point,
+        /// How many closed contours lie inside its extent.
+        surrounded: usize,
+        /// The gap to the nearest other free end.
+        gap: Option<f64>,
+    },
     /// A contour crosses or touches itself.
     #[error("the contour on layer '{layer}' crosses itself at {}", fmt_point(*.point))]
     SelfCrossing {

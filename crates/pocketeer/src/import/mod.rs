@@ -37,6 +37,9 @@ pub struct ImportOptions {
     pub units: Option<Units>,
     /// Join tolerance in millimetres.
     pub join_tolerance: f64,
+    /// Ignore open chains even where they surround closed contours (by default such a drawing
+    /// is refused: the open chain is most likely a pocket outline that does not close).
+    pub ignore_open: bool,
 }
 
 impl Default for ImportOptions {
@@ -45,6 +48,7 @@ impl Default for ImportOptions {
             layers: None,
             units: None,
             join_tolerance: DEFAULT_JOIN_TOLERANCE,
+            ignore_open: false,
         }
     }
 }
