@@ -14,7 +14,7 @@ mod tolerance;
 
 pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
-pub use contour::{signed_area, winding_number, Contour};
+pub use contour::{signed_area, winding_number, Contour, WindingIndex};
 pub use distance::{closest_param, closest_point, point_distance, segment_distance};
 pub use index::BoxIndex;
 pub use intersect::{intersect, Intersection, Intersections};

@@ -206,7 +206,8 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     }
     measure_gaps(&mut out.open);
     // Report contours in drawing order.
-    out.contours.sort_by_key(|c| c.elements.iter().copied().min());
+    out.contours
+        .sort_by_cached_key(|c| c.elements.iter().copied().min());
     out
 }
 
@@ -314,7 +315,9 @@ impl Nodes {
             .collect();
         let radius = tol.join.max(tol.eps);
         let cell = |p: Point| ((p.x / radius).floor() as i64, (p.y / radius).floor() as i64);
-        let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        // Grid cells hold linked lists of end indices (head in the map, links in `next`).
+        let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
+        let mut next = vec![usize::MAX; 2 * n];
         let mut parent: Vec<usize> = (0..2 * n).collect();
         fn find(parent: &mut [usize], mut x: usize) -> usize {
             while parent[x] != x {
@@ -330,20 +333,22 @@ impl Nodes {
             let (cx, cy) = cell(ends[k]);
             for dx in -1..=1 {
                 for dy in -1..=1 {
-                    if let Some(list) = grid.get(&(cx + dx, cy + dy)) {
-                        for &o in list {
-                            // Contours are chained within their layer only.
-                            if elements[o / 2].layer == elements[k / 2].layer
-                                && ends[o].distance(ends[k]) <= radius
-                            {
-                                let (a, b) = (find(&mut parent, o), find(&mut parent, k));
-                                parent[a] = b;
-                            }
+                    let mut o = grid.get(&(cx + dx, cy + dy)).copied().unwrap_or(usize::MAX);
+                    while o != usize::MAX {
+                        // Contours are chained within their layer only.
+                        if elements[o / 2].layer == elements[k / 2].layer
+                            && ends[o].distance(ends[k]) <= radius
+                        {
+                            let (a, b) = (find(&mut parent, o), find(&mut parent, k));
+                            parent[a] = b;
                         }
+                        o = next[o];
                     }
                 }
             }
-            grid.entry((cx, cy)).or_default().push(k);
+            let head = grid.entry((cx, cy)).or_insert(usize::MAX);
+            next[k] = *head;
+            *head = k;
         }
         let mut index: HashMap<usize, usize> = HashMap::new();
         let mut node_of = vec![usize::MAX; 2 * n];

@@ -12,9 +12,34 @@ use super::chain::ChainedContour;
 use super::error::{fmt_point, ImportError};
 use super::simple::make_simple;
 use crate::geom::{
-    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance,
+    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance, WindingIndex,
 };
+use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
+
+/// Point-in-contour tests over a set of contours; large contours get a strip index on first use.
+struct Locator<'a> {
+    contours: Vec<&'a Contour>,
+    index: Vec<OnceCell<Option<WindingIndex>>>,
+}
+
+impl<'a> Locator<'a> {
+    fn new(contours: Vec<&'a Contour>) -> Self {
+        let index = contours.iter().map(|_| OnceCell::new()).collect();
+        Locator { contours, index }
+    }
+
+    /// True when `p` (not on the contour) lies inside contour `k`.
+    fn contains(&self, k: usize, p: Point) -> bool {
+        let c = self.contours[k];
+        let index =
+            self.index[k].get_or_init(|| (c.segments.len() > 32).then(|| WindingIndex::new(&c.segments)));
+        match index {
+            Some(i) => i.winding(&c.segments, p) != 0,
+            None => c.contains(p),
+        }
+    }
+}
 
 /// A pocket: the area inside a counter-clockwise boundary and outside its clockwise islands.
 #[derive(Debug, Clone)]
@@ -118,7 +143,8 @@ pub fn find_pockets(
     }
 
     let crossing: HashSet<(usize, usize)> = crossings.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
-    let levels = nesting_levels(contours, &crossing, tol);
+    let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
+    let levels = nesting_levels(contours, &crossing, &locator, tol);
     let mut reported = HashSet::new();
     for &(a, b, p) in &crossings {
         if reported.insert((cluster[a], a.min(b), a.max(b))) {
@@ -143,7 +169,7 @@ pub fn find_pockets(
     let removed = |p: Point| {
         contour_index
             .at_point(p)
-            .filter(|&c| contours[c].contour.contains(p))
+            .filter(|&c| locator.contains(c, p))
             .map(|c| levels[c])
             .max()
             .is_some_and(|l| l % 2 == 0)
@@ -238,6 +264,7 @@ fn samples(c: &Contour, count: usize) -> Vec<Point> {
 fn nesting_levels(
     contours: &[ChainedContour],
     crossing: &HashSet<(usize, usize)>,
+    locator: &Locator,
     tol: &Tolerance,
 ) -> Vec<usize> {
     let n = contours.len();
@@ -256,11 +283,10 @@ fn nesting_levels(
             if a == b || !done[a] {
                 continue;
             }
-            let outer = &contours[a].contour;
             let enclosed = if crossing.contains(&(a.min(b), a.max(b))) {
-                levels[a] % 2 == 0 && mostly_inside(inner, outer, tol)
+                levels[a] % 2 == 0 && mostly_inside(inner, a, locator, tol)
             } else {
-                boxes[a].contains_box(&boxes[b]) && probe.first().is_some_and(|&p| outer.contains(p))
+                boxes[a].contains_box(&boxes[b]) && probe.first().is_some_and(|&p| locator.contains(a, p))
             };
             if enclosed {
                 level = level.max(levels[a] + 1);
@@ -274,17 +300,17 @@ fn nesting_levels(
 
 /// True when at least half of `inner`'s length (sampled, ignoring points on `outer`) lies
 /// inside `outer`.
-fn mostly_inside(inner: &Contour, outer: &Contour, tol: &Tolerance) -> bool {
+fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Tolerance) -> bool {
     let (mut inside, mut outside) = (0, 0);
     for p in samples(inner, 15) {
-        if outer
+        if locator.contours[outer]
             .segments
             .iter()
             .any(|s| point_distance(s, p) <= tol.join.max(tol.eps))
         {
             continue;
         }
-        if outer.contains(p) {
+        if locator.contains(outer, p) {
             inside += 1;
         } else {
             outside += 1;
@@ -456,25 +482,34 @@ fn assemble(loops: Vec<Contour>, warnings: &mut Vec<String>) -> Vec<Pocket> {
     pockets.sort_by(|a, b| b.boundary.signed_area().total_cmp(&a.boundary.signed_area()));
     let boxes: Vec<Aabb> = pockets.iter().map(|p| p.boundary.bbox()).collect();
     let index = BoxIndex::new(&boxes);
-    for hole in holes {
-        let Some(&probe) = samples(&hole, 1).first() else {
-            continue;
-        };
-        let owner = index
-            .at_point(probe)
-            .filter(|&k| boxes[k].contains_box(&hole.bbox()) && pockets[k].boundary.contains(probe))
-            .min_by(|&a, &b| {
-                pockets[a]
-                    .boundary
-                    .signed_area()
-                    .total_cmp(&pockets[b].boundary.signed_area())
-            });
+    let owners: Vec<Option<usize>> = {
+        let locator = Locator::new(pockets.iter().map(|p| &p.boundary).collect());
+        holes
+            .iter()
+            .map(|hole| {
+                let probe = *samples(hole, 1).first()?;
+                index
+                    .at_point(probe)
+                    .filter(|&k| boxes[k].contains_box(&hole.bbox()) && locator.contains(k, probe))
+                    .min_by(|&a, &b| {
+                        pockets[a]
+                            .boundary
+                            .signed_area()
+                            .total_cmp(&pockets[b].boundary.signed_area())
+                    })
+            })
+            .collect()
+    };
+    for (hole, owner) in holes.into_iter().zip(owners) {
         match owner {
             Some(k) => pockets[k].islands.push(hole),
-            None => warnings.push(format!(
-                "an island at {} lies in no pocket; ignored",
-                fmt_point(probe)
-            )),
+            None => {
+                let at = hole.segments.first().map(|s| s.start()).unwrap_or_default();
+                warnings.push(format!(
+                    "an island at {} lies in no pocket; ignored",
+                    fmt_point(at)
+                ));
+            }
         }
     }
     pockets
