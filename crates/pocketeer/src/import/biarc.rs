@@ -4,7 +4,12 @@
 use crate::geom::{point_distance, Arc, Line, Point, Segment, Vector};
 
 /// Number of curve samples checked against each biarc.
-const SAMPLES: usize = 16;
+const SAMPLES: usize = 24;
+/// The samples must lie this much closer than the tolerance, so that the curve between them
+/// stays within it too.
+const MARGIN: f64 = 0.8;
+/// Points of each arc checked against the curve.
+const ARC_PROBES: usize = 6;
 /// Subdivision depth limit: 2^24 pieces is far beyond any drawing.
 const MAX_DEPTH: u32 = 24;
 
@@ -32,13 +37,25 @@ fn fit_rec(
         _ => None,
     };
     let fits = |segs: &[Segment]| {
-        (1..SAMPLES).all(|i| {
-            let p = eval(t0 + (t1 - t0) * i as f64 / SAMPLES as f64).0;
+        let samples: Vec<(f64, Point)> = (0..=SAMPLES)
+            .map(|i| t0 + (t1 - t0) * i as f64 / SAMPLES as f64)
+            .map(|t| (t, eval(t).0))
+            .collect();
+        // Every curve sample near an arc, and every arc near the curve (an arc may swing out
+        // and back between samples that all lie near it).
+        let curve_near_arcs = samples.iter().all(|&(_, p)| {
             segs.iter()
                 .map(|s| point_distance(s, p))
                 .fold(f64::INFINITY, f64::min)
-                <= tol
-        })
+                <= tol * MARGIN
+        });
+        curve_near_arcs
+            && segs.iter().all(|s| {
+                (1..ARC_PROBES).all(|k| {
+                    let q = s.point_at(k as f64 / ARC_PROBES as f64);
+                    distance_to_curve(eval, &samples, q) <= tol * MARGIN
+                })
+            })
     };
     match candidate {
         Some(segs) if depth >= MAX_DEPTH || fits(&segs) => out.extend(segs),
@@ -49,6 +66,40 @@ fn fit_rec(
             fit_rec(eval, tm, t1, tol, depth + 1, out);
         }
     }
+}
+
+/// Distance from `q` to the curve near the closest of its `samples` (parameter, point): a
+/// golden-section search between the neighbouring samples.
+fn distance_to_curve(eval: &dyn Fn(f64) -> (Point, Vector), samples: &[(f64, Point)], q: Point) -> f64 {
+    let Some(i) =
+        (0..samples.len()).min_by(|&a, &b| samples[a].1.distance(q).total_cmp(&samples[b].1.distance(q)))
+    else {
+        return f64::INFINITY;
+    };
+    let (mut lo, mut hi) = (
+        samples[i.saturating_sub(1)].0,
+        samples[(i + 1).min(samples.len() - 1)].0,
+    );
+    let dist = |t: f64| eval(t).0.distance(q);
+    const INV_PHI: f64 = 0.618_033_988_749_894_9;
+    let (mut a, mut b) = (hi - INV_PHI * (hi - lo), lo + INV_PHI * (hi - lo));
+    let (mut fa, mut fb) = (dist(a), dist(b));
+    for _ in 0..40 {
+        if fa < fb {
+            hi = b;
+            b = a;
+            fb = fa;
+            a = hi - INV_PHI * (hi - lo);
+            fa = dist(a);
+        } else {
+            lo = a;
+            a = b;
+            fa = fb;
+            b = lo + INV_PHI * (hi - lo);
+            fb = dist(b);
+        }
+    }
+    fa.min(fb).min(samples[i].1.distance(q))
 }
 
 /// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`).

@@ -202,7 +202,10 @@ impl EllipseArc {
     }
 }
 
-/// A non-uniform rational B-spline.
+/// Highest spline degree read.
+pub const MAX_DEGREE: usize = 11;
+
+/// A non-uniform rational B-spline (degree at most [`MAX_DEGREE`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nurbs {
     /// Degree (1 = polyline, 3 = the usual cubic).
@@ -225,18 +228,31 @@ impl Nurbs {
             .collect()
     }
 
+    /// The point at parameter `t` of the curve's domain (at a knot, the piece that starts there).
+    pub fn point(&self, t: f64) -> Point {
+        let spans = self.spans();
+        let k = spans
+            .iter()
+            .rev()
+            .find(|s| s.1 <= t)
+            .or(spans.first())
+            .map_or(self.degree, |s| s.0);
+        self.point_in_span(k, t)
+    }
+
     /// The point at `t` of the polynomial piece on span `k` (de Boor's algorithm). Evaluating
     /// on an explicit span keeps both ends of a span on that span's piece, which matters where
     /// a knot of full multiplicity lets the curve jump.
     pub fn point_in_span(&self, k: usize, t: f64) -> Point {
         let p = self.degree;
-        let mut d: Vec<[f64; 3]> = (0..=p)
-            .map(|j| {
-                let i = k + j - p;
-                let w = self.weights[i];
-                [self.points[i].x * w, self.points[i].y * w, w]
-            })
-            .collect();
+        // Degrees above MAX_DEGREE are refused on import; the fixed array avoids an allocation
+        // per evaluation.
+        let mut d = [[0.0f64; 3]; MAX_DEGREE + 1];
+        for (j, dj) in d.iter_mut().enumerate().take(p + 1) {
+            let i = k + j - p;
+            let w = self.weights[i];
+            *dj = [self.points[i].x * w, self.points[i].y * w, w];
+        }
         for r in 1..=p {
             for j in (r..=p).rev() {
                 let i = k + j - p;
@@ -324,12 +340,23 @@ impl Curve {
             },
             Curve::Spline(s) => {
                 for (k, a, b) in s.spans() {
-                    let h = (b - a) * 1e-7;
                     let eval = |t: f64| {
-                        // One-sided differences inside the span: the curve may have a corner at a knot.
-                        let (t1, t2) = if t + h <= b { (t, t + h) } else { (t - h, t) };
-                        let (p1, p2) = (s.point_in_span(k, t1), s.point_in_span(k, t2));
-                        (s.point_in_span(k, t), (p2 - p1) / h)
+                        let p = s.point_in_span(k, t);
+                        // One-sided differences inside the span (the curve may have a corner at a
+                        // knot). Where control points repeat, the derivative vanishes at the span's
+                        // end: widen the step until the curve visibly moves, which gives the
+                        // direction it leaves in.
+                        let mut d = crate::geom::Vector::default();
+                        for rel in [1e-7, 1e-5, 1e-3, 1e-2] {
+                            let h = (b - a) * rel;
+                            let (t1, t2) = if t + h <= b { (t, t + h) } else { (t - h, t) };
+                            let (p1, p2) = (s.point_in_span(k, t1), s.point_in_span(k, t2));
+                            d = (p2 - p1) / h;
+                            if p1.distance(p2) > 1e-12 * (1.0 + p.to_vector().length()) {
+                                break;
+                            }
+                        }
+                        (p, d)
                     };
                     super::biarc::fit(&eval, a, b, tolerance, out);
                 }

@@ -210,7 +210,7 @@ fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine) -> Vec<Curve> {
 
 fn spline(f: &Fields) -> Result<Vec<Curve>, String> {
     let degree = f.int_or(71, 3);
-    if !(1..=11).contains(&degree) {
+    if !(1..=super::curve::MAX_DEGREE as i64).contains(&degree) {
         return Err(format!("spline degree {degree} is not supported"));
     }
     let degree = degree as usize;

@@ -1,0 +1,91 @@
+//! Splines and ellipses become arcs that stay within 0.001 mm of the true curve, both ways:
+//! every curve point is near an arc, and every arc point is near the curve.
+
+use pocketeer::geom::{point_distance, Point, Segment, Vector};
+use pocketeer::import::curve::{Curve, EllipseArc, Nurbs};
+use pocketeer::import::CURVE_TOLERANCE;
+use proptest::prelude::*;
+
+/// Distance from `q` to the curve `eval`, refined around each sample that is a local minimum
+/// of the distance (the curve may pass near `q` more than once).
+fn distance_to_curve(q: Point, samples: &[(f64, Point)], eval: &dyn Fn(f64) -> Point) -> f64 {
+    let d: Vec<f64> = samples.iter().map(|s| s.1.distance(q)).collect();
+    let mut best = f64::INFINITY;
+    for i in 0..samples.len() {
+        let left = i == 0 || d[i - 1] >= d[i];
+        let right = i + 1 == samples.len() || d[i + 1] >= d[i];
+        if !(left && right) {
+            continue;
+        }
+        let (mut lo, mut hi) = (
+            samples[i.saturating_sub(1)].0,
+            samples[(i + 1).min(samples.len() - 1)].0,
+        );
+        // The distance is unimodal this close to a minimum: ternary search.
+        for _ in 0..80 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if eval(m1).distance(q) < eval(m2).distance(q) {
+                hi = m2;
+            } else {
+                lo = m1;
+            }
+        }
+        best = best.min(eval(0.5 * (lo + hi)).distance(q)).min(d[i]);
+    }
+    best
+}
+
+fn check(curve: &Curve, t0: f64, t1: f64, eval: &dyn Fn(f64) -> Point) -> Result<(), TestCaseError> {
+    let mut segs: Vec<Segment> = Vec::new();
+    curve.to_segments(CURVE_TOLERANCE, &mut segs);
+    prop_assert!(!segs.is_empty());
+    prop_assert!(segs.len() < 400, "{} pieces", segs.len());
+    for w in segs.windows(2) {
+        prop_assert!(w[0].end().distance(w[1].start()) < 1e-6, "pieces do not join");
+    }
+    let samples: Vec<(f64, Point)> = (0..=2000)
+        .map(|i| t0 + (t1 - t0) * i as f64 / 2000.0)
+        .map(|t| (t, eval(t)))
+        .collect();
+    for &(_, p) in &samples {
+        let d = segs
+            .iter()
+            .map(|s| point_distance(s, p))
+            .fold(f64::INFINITY, f64::min);
+        prop_assert!(d <= CURVE_TOLERANCE, "curve point {p:?} is {d} from the arcs");
+    }
+    for s in &segs {
+        for k in 0..=8 {
+            let q = s.point_at(k as f64 / 8.0);
+            let d = distance_to_curve(q, &samples, eval);
+            prop_assert!(d <= CURVE_TOLERANCE, "arc point {q:?} is {d} from the curve");
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn cubic_splines(pts in prop::collection::vec((-50.0..50.0f64, -50.0..50.0f64), 4..9)) {
+        let n = pts.len();
+        let degree = 3;
+        let mut knots = vec![0.0; degree + 1];
+        for k in 1..n - degree {
+            knots.push(k as f64);
+        }
+        knots.extend(vec![(n - degree) as f64; degree + 1]);
+        let s = Nurbs { degree, knots, points: pts.iter().map(|&(x, y)| Point::new(x, y)).collect(), weights: vec![1.0; n] };
+        let end = (n - degree) as f64;
+        check(&Curve::Spline(s.clone()), 0.0, end, &|t| s.point(t))?;
+    }
+
+    #[test]
+    fn ellipse_arcs(a in 1.0..80.0f64, ratio in 0.05..1.0f64, rot in -3.0..3.0f64, t0 in 0.0..6.28f64, sweep in 0.2..6.28f64) {
+        let u = Vector::from_angle(rot) * a;
+        let v = Vector::from_angle(rot).perp() * (a * ratio);
+        let e = EllipseArc { center: Point::new(3.0, -7.0), u, v, t0, sweep };
+        check(&Curve::Ellipse(e), t0, t0 + sweep, &|t| e.point(t))?;
+    }
+}
