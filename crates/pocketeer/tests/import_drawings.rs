@@ -355,10 +355,21 @@ fn a_circle_in_a_non_uniformly_scaled_block_becomes_an_ellipse_of_arcs() {
         .elements
         .iter()
         .all(|e| matches!(e.segment, pocketeer::geom::Segment::Arc(_))));
+    // A polygon within 0.001 mm needs about ∫ sqrt(κ / 8e-3) ds chords; arcs (error falling with
+    // the cube of their length, not the square) need fewer than half as many.
+    let chords: f64 = (0..10_000)
+        .map(|k| {
+            let t = k as f64 / 10_000.0 * 2.0 * PI;
+            let (a, b) = (30.0f64, 10.0f64);
+            let speed = (a * a * t.sin().powi(2) + b * b * t.cos().powi(2)).sqrt();
+            let curvature = a * b / speed.powi(3);
+            (curvature / 8e-3).sqrt() * speed * 2.0 * PI / 10_000.0
+        })
+        .sum();
+    let arcs = a.drawing.elements.len();
     assert!(
-        a.drawing.elements.len() < 100,
-        "{} arcs",
-        a.drawing.elements.len()
+        arcs * 2 < chords as usize,
+        "{arcs} arcs where a polygon needs {chords:.0} chords"
     );
     // Within 0.001 mm everywhere: the area is within perimeter × 0.001.
     assert!(close(pockets(&a)[0].0, PI * 30.0 * 10.0, 0.14 * 1.0));
