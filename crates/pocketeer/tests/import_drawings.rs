@@ -587,3 +587,29 @@ fn old_style_polylines_with_vertex_bulges() {
     let a = read(&Drawing::new(ents));
     assert!(close(pockets(&a)[0].0, 200.0 + 25.0 * PI, 1e-9));
 }
+
+#[test]
+fn a_spline_given_by_fit_points_passes_through_them() {
+    // Fit points on a circle of radius 20, first and last equal: a closed curve.
+    let n = 24;
+    let mut e = Entity::new("SPLINE", "0").g(70, 8).g(71, 3).g(74, n + 1);
+    let pts: Vec<(f64, f64)> = (0..=n)
+        .map(|k| (k as f64 / n as f64 * 2.0 * PI).sin_cos())
+        .map(|(s, c)| (20.0 * c, 20.0 * s))
+        .collect();
+    for &(x, y) in &pts {
+        e = e.g(11, x).g(21, y).g(31, 0.0);
+    }
+    let a = read(&Drawing::new(vec![e]));
+    let segs: Vec<_> = a.drawing.elements.iter().map(|e| e.segment).collect();
+    for &(x, y) in &pts {
+        let p = pocketeer::geom::Point::new(x, y);
+        let d = segs
+            .iter()
+            .map(|s| pocketeer::geom::point_distance(s, p))
+            .fold(f64::INFINITY, f64::min);
+        assert!(d <= 0.001, "fit point {p:?} is {d} from the curve");
+    }
+    // An interpolating cubic through 24 points of a circle stays very near the circle.
+    assert!(close(pockets(&a)[0].0, 400.0 * PI, 1.0), "{:?}", pockets(&a));
+}

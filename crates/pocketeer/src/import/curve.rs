@@ -228,6 +228,87 @@ impl Nurbs {
             .collect()
     }
 
+    /// The cubic (or lower degree, for fewer points) B-spline through `points`, parameterised
+    /// by chord length with averaged knots: the curve a CAD program draws through a spline's
+    /// fit points. `None` for fewer than two distinct points.
+    ///
+    /// ```
+    /// use pocketeer::geom::Point;
+    /// use pocketeer::import::curve::Nurbs;
+    /// let pts = [Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(3.0, 3.0), Point::new(4.0, 0.0), Point::new(6.0, 1.0)];
+    /// let s = Nurbs::through(&pts).unwrap();
+    /// assert_eq!(s.degree, 3);
+    /// assert!(s.point(0.0).distance(pts[0]) < 1e-9 && s.point(1.0).distance(pts[4]) < 1e-9);
+    /// ```
+    pub fn through(points: &[Point]) -> Option<Nurbs> {
+        let mut q: Vec<Point> = Vec::with_capacity(points.len());
+        for &p in points {
+            if q.last().is_none_or(|l: &Point| l.distance(p) > 0.0) {
+                q.push(p);
+            }
+        }
+        if q.len() < 2 {
+            return None;
+        }
+        let n = q.len() - 1;
+        let p = n.min(3);
+        // Chord-length parameters.
+        let total: f64 = q.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let mut u = vec![0.0; n + 1];
+        for k in 1..=n {
+            u[k] = u[k - 1] + q[k - 1].distance(q[k]) / total;
+        }
+        u[n] = 1.0;
+        // Averaged knots.
+        let mut knots = vec![0.0; p + 1];
+        for j in 1..=n - p {
+            knots.push(u[j..j + p].iter().sum::<f64>() / p as f64);
+        }
+        knots.extend(std::iter::repeat_n(1.0, p + 1));
+        let mut curve = Nurbs {
+            degree: p,
+            knots,
+            points: vec![Point::ORIGIN; n + 1],
+            weights: vec![1.0; n + 1],
+        };
+        // Row k of the collocation matrix holds the p + 1 basis functions that are non-zero at
+        // u[k]; the matrix is banded and totally positive, so elimination needs no pivoting.
+        let rows: Vec<(usize, Vec<f64>)> = u.iter().map(|&t| curve.basis(t)).collect();
+        let x = solve_banded(&rows, &q.iter().map(|p| p.x).collect::<Vec<_>>())?;
+        let y = solve_banded(&rows, &q.iter().map(|p| p.y).collect::<Vec<_>>())?;
+        curve.points = x.into_iter().zip(y).map(|(x, y)| Point::new(x, y)).collect();
+        Some(curve)
+    }
+
+    /// The first index `i` and the values of the basis functions N(i..=i+p) at `t`.
+    fn basis(&self, t: f64) -> (usize, Vec<f64>) {
+        let p = self.degree;
+        let n = self.points.len();
+        let mut k = p;
+        while k + 1 < n && self.knots[k + 1] <= t {
+            k += 1;
+        }
+        let u = &self.knots;
+        // Cox–de Boor, triangular form.
+        let mut nv = vec![0.0; p + 1];
+        nv[0] = 1.0;
+        let mut left = vec![0.0; p + 1];
+        let mut right = vec![0.0; p + 1];
+        for j in 1..=p {
+            left[j] = t - u[k + 1 - j];
+            right[j] = u[k + j] - t;
+            let mut saved = 0.0;
+            for r in 0..j {
+                let denom = right[r + 1] + left[j - r];
+                let temp = if denom == 0.0 { 0.0 } else { nv[r] / denom };
+                nv[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            nv[j] = saved;
+        }
+        (k - p, nv)
+    }
+
     /// The point at parameter `t` of the curve's domain (at a knot, the piece that starts there).
     pub fn point(&self, t: f64) -> Point {
         let spans = self.spans();
@@ -363,4 +444,59 @@ impl Curve {
             }
         }
     }
+}
+
+/// Solves `A x = b` for a square matrix whose row `k` is `rows[k].1` starting at column
+/// `rows[k].0`, by band elimination without pivoting. `None` for a singular system.
+fn solve_banded(rows: &[(usize, Vec<f64>)], b: &[f64]) -> Option<Vec<f64>> {
+    let n = rows.len();
+    let kl = rows
+        .iter()
+        .enumerate()
+        .map(|(k, (c, _))| k.saturating_sub(*c))
+        .max()
+        .unwrap_or(0);
+    let ku = rows
+        .iter()
+        .enumerate()
+        .map(|(k, (c, v))| (c + v.len()).saturating_sub(k + 1))
+        .max()
+        .unwrap_or(0);
+    let width = kl + ku + 1;
+    // band[k][j - k + kl] = A[k][j]; fill-in stays inside the band without pivoting.
+    let mut band = vec![vec![0.0; width]; n];
+    for (k, (c, v)) in rows.iter().enumerate() {
+        for (o, &a) in v.iter().enumerate() {
+            let j = c + o;
+            if j < n && j + kl >= k && j <= k + ku {
+                band[k][j + kl - k] = a;
+            }
+        }
+    }
+    let mut rhs = b.to_vec();
+    for k in 0..n {
+        let pivot = band[k][kl];
+        if pivot.abs() < 1e-14 {
+            return None;
+        }
+        for i in k + 1..n.min(k + kl + 1) {
+            let factor = band[i][k + kl - i] / pivot;
+            if factor == 0.0 {
+                continue;
+            }
+            for j in k..n.min(k + ku + 1) {
+                band[i][j + kl - i] -= factor * band[k][j + kl - k];
+            }
+            rhs[i] -= factor * rhs[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for k in (0..n).rev() {
+        let mut s = rhs[k];
+        for j in k + 1..n.min(k + ku + 1) {
+            s -= band[k][j + kl - k] * x[j];
+        }
+        x[k] = s / band[k][kl];
+    }
+    Some(x)
 }

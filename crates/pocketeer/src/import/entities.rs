@@ -218,11 +218,16 @@ fn spline(f: &Fields) -> Result<Vec<Curve>, String> {
     let ys = f.all(20);
     let knots = f.all(40);
     if xs.is_empty() {
-        let fit = f.all(11);
-        if fit.len() >= 2 {
-            return Err("spline defined by fit points only; re-save it with control points".into());
+        // Only fit points: the curve is the cubic that interpolates them.
+        let (fx, fy) = (f.all(11), f.all(21));
+        if fx.len() != fy.len() {
+            return Err("fit points with missing coordinates".into());
         }
-        return Ok(vec![]);
+        let fit: Vec<Point> = fx.iter().zip(&fy).map(|(&x, &y)| Point::new(x, y)).collect();
+        if fit.iter().any(|p| !p.is_finite()) {
+            return Err("a fit point is not a number".into());
+        }
+        return Ok(Nurbs::through(&fit).map(Curve::Spline).into_iter().collect());
     }
     if xs.len() != ys.len() {
         return Err("control points with missing coordinates".into());
