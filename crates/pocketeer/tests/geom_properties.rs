@@ -75,6 +75,25 @@ fn pair() -> impl Strategy<Value = (Segment, Segment)> {
     ]
 }
 
+/// A closed chain through the points: to each next point a line, or an arc with the given bulge;
+/// steps shorter than `min_len` are skipped.
+fn closed_chain(pts: &[(Point, f64, bool)], min_len: f64) -> Vec<Segment> {
+    let n = pts.len();
+    (0..n)
+        .filter_map(|i| {
+            let (a, bulge, is_arc) = pts[i];
+            let b = pts[(i + 1) % n].0;
+            if a.distance(b) < min_len {
+                return None;
+            }
+            Some(match (is_arc, Arc::from_bulge(a, b, bulge)) {
+                (true, Some(arc)) => Segment::Arc(arc),
+                _ => Segment::Line(Line::new(a, b)),
+            })
+        })
+        .collect()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
@@ -144,16 +163,7 @@ proptest! {
         pts in prop::collection::vec((point(), -2.0..2.0f64, any::<bool>()), 3..12),
         angle in -PI..PI,
     ) {
-        let n = pts.len();
-        let segs: Vec<Segment> = (0..n).filter_map(|i| {
-            let (a, bulge, is_arc) = pts[i];
-            let b = pts[(i + 1) % n].0;
-            if a.distance(b) < 1e-6 { return None; }
-            Some(match (is_arc, Arc::from_bulge(a, b, bulge)) {
-                (true, Some(arc)) => Segment::Arc(arc),
-                _ => Segment::Line(Line::new(a, b)),
-            })
-        }).collect();
+        let segs = closed_chain(&pts, 1e-6);
         prop_assume!(!segs.is_empty());
         let area = signed_area(&segs);
         let scale = 1.0 + segs.iter().map(|s| s.bbox().magnitude()).fold(0.0, f64::max).powi(2);
@@ -190,16 +200,7 @@ proptest! {
         pts in prop::collection::vec((point(), -3.0..3.0f64, any::<bool>()), 2..8),
         probes in prop::collection::vec(point(), 20),
     ) {
-        let n = pts.len();
-        let segs: Vec<Segment> = (0..n).filter_map(|i| {
-            let (a, bulge, is_arc) = pts[i];
-            let b = pts[(i + 1) % n].0;
-            if a.distance(b) < 1e-3 { return None; }
-            Some(match (is_arc, Arc::from_bulge(a, b, bulge)) {
-                (true, Some(arc)) => Segment::Arc(arc),
-                _ => Segment::Line(Line::new(a, b)),
-            })
-        }).collect();
+        let segs = closed_chain(&pts, 1e-3);
         prop_assume!(segs.len() >= 2);
         let mut poly = Vec::new();
         for s in &segs {
