@@ -8,7 +8,7 @@
 use super::error::fmt_point;
 use super::Element;
 use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// A closed contour found by chaining.
 #[derive(Debug, Clone)]
@@ -243,6 +243,38 @@ fn measure_gaps(open: &mut [OpenChain]) {
 
 /// Marks elements lying entirely on another element of the same layer as dead; returns how many.
 fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> usize {
+    // Exact copies first, by hashing, so that a drawing of a million identical lines costs a
+    // million look-ups rather than a million squared comparisons below.
+    let mut dropped = 0;
+    let mut seen = HashSet::new();
+    for (i, e) in elements.iter().enumerate() {
+        if !alive[i] {
+            continue;
+        }
+        let (a, b) = (e.segment.start(), e.segment.end());
+        let (a, b) = if (a.x, a.y) <= (b.x, b.y) { (a, b) } else { (b, a) };
+        let mut key = vec![
+            e.layer as u64,
+            a.x.to_bits(),
+            a.y.to_bits(),
+            b.x.to_bits(),
+            b.y.to_bits(),
+        ];
+        if let Segment::Arc(arc) = e.segment {
+            // The same end points and circle, either direction: the same arc only if the
+            // other side of the circle is not meant; the midpoint tells.
+            let m = arc.point_at(0.5);
+            key.extend([
+                arc.radius.to_bits(),
+                (m.x as f32).to_bits() as u64,
+                (m.y as f32).to_bits() as u64,
+            ]);
+        }
+        if !seen.insert(key) {
+            alive[i] = false;
+            dropped += 1;
+        }
+    }
     let boxes: Vec<Aabb> = elements
         .iter()
         .enumerate()
@@ -255,7 +287,6 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
         })
         .collect();
     let index = BoxIndex::new(&boxes);
-    let mut dropped = 0;
     for (j, e) in elements.iter().enumerate() {
         if !alive[j] {
             continue;
@@ -318,6 +349,7 @@ impl Nodes {
         // Grid cells hold linked lists of end indices (head in the map, links in `next`).
         let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
         let mut next = vec![usize::MAX; 2 * n];
+        let mut exact: HashMap<(u64, u64, usize), usize> = HashMap::new();
         let mut parent: Vec<usize> = (0..2 * n).collect();
         fn find(parent: &mut [usize], mut x: usize) -> usize {
             while parent[x] != x {
@@ -330,6 +362,16 @@ impl Nodes {
             if !alive[k / 2] {
                 continue;
             }
+            // An end exactly where an earlier one is joins it and everything it joins.
+            if let Some(&o) = exact.get(&(ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer)) {
+                let (a, b) = (find(&mut parent, o), find(&mut parent, k));
+                parent[a] = b;
+                continue;
+            }
+            exact.insert(
+                (ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer),
+                k,
+            );
             let (cx, cy) = cell(ends[k]);
             for dx in -1..=1 {
                 for dy in -1..=1 {

@@ -10,7 +10,7 @@ use crate::geom::Vector;
 /// Deepest block nesting followed.
 const MAX_NESTING: usize = 64;
 /// Most curves block insertions may produce (guards against exponential nesting).
-pub const MAX_CURVES: usize = 20_000_000;
+pub const MAX_CURVES: usize = 2_000_000;
 
 /// One curve of the drawing in world coordinates (millimetres once the root map scales to them).
 pub struct Placed {

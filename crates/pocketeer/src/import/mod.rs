@@ -100,8 +100,9 @@ impl Drawing {
 /// Reads a DXF file's bytes into a [`Drawing`].
 pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, ImportError> {
     let groups = dxf::read_groups(bytes)?;
-    let doc = dxf::parse_document(&groups)?;
-    let mut warnings = doc.warnings.clone();
+    let binary = groups.binary;
+    let mut doc = dxf::parse_document(groups)?;
+    let mut warnings = std::mem::take(&mut doc.warnings);
 
     let declared_units = doc
         .header_value("$INSUNITS")
@@ -114,12 +115,8 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
         }
     }
 
-    let model: Vec<dxf::RawEntity> = doc
-        .entities
-        .iter()
-        .filter(|e| !e.in_paper_space())
-        .cloned()
-        .collect();
+    let mut model = std::mem::take(&mut doc.entities);
+    model.retain(|e| !e.in_paper_space());
     let mut entity_counts = BTreeMap::new();
     for e in &model {
         *entity_counts.entry(e.kind.clone()).or_insert(0) += 1;
@@ -207,6 +204,6 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
         sources,
         extent,
         warnings,
-        binary: groups.binary,
+        binary,
     })
 }

@@ -4,7 +4,7 @@
 //! section ended, several ENTITIES sections, a missing EOF, unknown tables and objects) and strict
 //! where sloppiness would change the drawing (a file cut off inside its entities).
 
-use super::tokens::{Group, Groups};
+use super::tokens::{Group, Groups, Value};
 use crate::import::error::{EntityRef, ImportError, Pos};
 use std::collections::HashMap;
 
@@ -89,20 +89,26 @@ impl Document {
     }
 }
 
-/// A cursor over the groups.
-struct Cursor<'a> {
-    groups: &'a [Group],
+/// A cursor over the groups, handing each one out by value (moved, not copied: a drawing's
+/// groups are most of the memory an import takes).
+struct Cursor {
+    groups: Vec<Group>,
     at: usize,
 }
 
-impl<'a> Cursor<'a> {
-    fn peek(&self) -> Option<&'a Group> {
+impl Cursor {
+    fn peek(&self) -> Option<&Group> {
         self.groups.get(self.at)
     }
-    fn next(&mut self) -> Option<&'a Group> {
-        let g = self.groups.get(self.at);
+    fn next(&mut self) -> Option<Group> {
+        let slot = self.groups.get_mut(self.at)?;
         self.at += 1;
-        g
+        let placeholder = Group {
+            code: -1,
+            value: Value::Bytes,
+            pos: slot.pos,
+        };
+        Some(std::mem::replace(slot, placeholder))
     }
     fn last_pos(&self) -> Pos {
         self.groups.last().map(|g| g.pos).unwrap_or(Pos::Line(1))
@@ -119,10 +125,11 @@ impl<'a> Cursor<'a> {
 }
 
 /// Splits the groups of a file into header, layers, blocks and entities.
-pub fn parse_document(read: &Groups) -> Result<Document, ImportError> {
+pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
     let mut doc = Document::default();
+    let saw_eof = read.saw_eof;
     let mut cur = Cursor {
-        groups: &read.groups,
+        groups: read.groups,
         at: 0,
     };
     let mut saw_section = false;
@@ -132,19 +139,19 @@ pub fn parse_document(read: &Groups) -> Result<Document, ImportError> {
         }
         if g.code == 9 {
             // A header variable outside the HEADER section: some writers put one after ENDSEC.
-            read_header_variable(&mut cur, g, &mut doc);
+            read_header_variable(&mut cur, &g, &mut doc);
             continue;
         }
         if !g.is(0, "SECTION") {
             continue;
         }
         saw_section = true;
-        let name = match cur.peek() {
-            Some(n) if n.code == 2 => {
-                cur.next();
-                n.text().trim().to_uppercase()
-            }
-            _ => String::new(),
+        let name = if cur.peek().is_some_and(|n| n.code == 2) {
+            cur.next()
+                .map(|n| n.text().trim().to_uppercase())
+                .unwrap_or_default()
+        } else {
+            String::new()
         };
         let closed = match name.as_str() {
             "HEADER" => read_header(&mut cur, &mut doc),
@@ -174,7 +181,7 @@ pub fn parse_document(read: &Groups) -> Result<Document, ImportError> {
             "no SECTION found: this is not a DXF drawing".into(),
         ));
     }
-    if !read.saw_eof {
+    if !saw_eof {
         doc.warnings.push("the file has no EOF marker".into());
     }
     Ok(doc)
@@ -186,8 +193,7 @@ fn read_header_variable(cur: &mut Cursor, name: &Group, doc: &mut Document) {
         if g.code == 0 || g.code == 9 {
             break;
         }
-        values.push(g.clone());
-        cur.next();
+        values.extend(cur.next());
     }
     doc.header.insert(name.text().trim().to_uppercase(), values);
 }
@@ -199,7 +205,7 @@ fn read_header(cur: &mut Cursor, doc: &mut Document) -> bool {
             return true;
         }
         if g.code == 9 {
-            read_header_variable(cur, g, doc);
+            read_header_variable(cur, &g, doc);
         }
     }
     false
@@ -288,19 +294,16 @@ fn read_entities(cur: &mut Cursor, stop: &[&str]) -> (Vec<RawEntity>, bool) {
         if kind == "EOF" || kind == "SECTION" {
             return (out, false);
         }
+        let pos = g.pos;
         cur.next();
         let mut entity = RawEntity {
             kind,
             groups: Vec::new(),
-            pos: g.pos,
+            pos,
             vertices: Vec::new(),
         };
-        while let Some(h) = cur.peek() {
-            if h.code == 0 {
-                break;
-            }
-            entity.groups.push(h.clone());
-            cur.next();
+        while cur.peek().is_some_and(|h| h.code != 0) {
+            entity.groups.extend(cur.next());
         }
         match entity.kind.as_str() {
             "VERTEX" => {
