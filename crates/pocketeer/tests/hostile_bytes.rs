@@ -143,3 +143,16 @@ fn drawings_with_mutated_values() {
         "only {reached_geometry} mutated drawings got past the reader"
     );
 }
+
+#[test]
+fn a_hundred_thousand_coincident_lines_are_one_line() {
+    // Quadratic passes would take minutes here; the importer hashes exact copies away first.
+    let mut ents: Vec<common::Entity> = (0..100_000)
+        .map(|_| common::line("0", 0.0, 0.0, 10.0, 0.0))
+        .collect();
+    ents.push(common::rect_poly("0", 20.0, 0.0, 30.0, 10.0));
+    let text = common::Drawing::new(ents).text();
+    let a = analyze(text.as_bytes(), &ImportOptions::default()).unwrap();
+    assert_eq!(a.chains.duplicates_dropped, 99_999);
+    assert_eq!(a.regions.pockets.len(), 1);
+}
