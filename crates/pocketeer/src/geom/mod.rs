@@ -10,6 +10,7 @@ pub mod intersect;
 mod line;
 mod point;
 mod segment;
+mod stitch;
 mod tolerance;
 
 pub use aabb::Aabb;
@@ -21,4 +22,5 @@ pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
 pub use point::{Point, Vector};
 pub use segment::Segment;
+pub use stitch::{cluster_points, stitch, Piece};
 pub use tolerance::{Tolerance, DEFAULT_JOIN_TOLERANCE};

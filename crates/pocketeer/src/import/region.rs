@@ -12,7 +12,8 @@ use super::chain::ChainedContour;
 use super::error::{fmt_point, ImportError};
 use super::simple::make_simple;
 use crate::geom::{
-    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Point, Segment, Tolerance, WindingIndex,
+    cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Point, Segment,
+    Tolerance, WindingIndex,
 };
 use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
@@ -391,81 +392,21 @@ fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
         .collect()
 }
 
-/// Joins pieces end to start into closed loops; at a node where several pieces leave, takes
-/// the one turning most to the left, so that loops touching at a point stay separate. Returns
-/// the loops and how many pieces could not be closed into one.
+/// Joins pieces end to start into closed loops (see [`crate::geom::stitch`]); ends closer
+/// than a hundred epsilons are one node. Returns the loops and how many pieces were left over.
 fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
-    let r = 100.0 * tol.eps;
-    let cell = |p: Point| ((p.x / r).floor() as i64, (p.y / r).floor() as i64);
-    let mut starts: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    for (i, p) in pieces.iter().enumerate() {
-        starts.entry(cell(p.start())).or_default().push(i);
-    }
-    let leaving = |p: Point| {
-        let (cx, cy) = cell(p);
-        let mut out = Vec::new();
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                if let Some(v) = starts.get(&(cx + dx, cy + dy)) {
-                    out.extend(v.iter().copied().filter(|&i| pieces[i].start().distance(p) <= r));
-                }
-            }
-        }
-        out
-    };
-    let mut used = vec![false; pieces.len()];
-    let mut loops = Vec::new();
-    let mut lost = 0;
-    for first in 0..pieces.len() {
-        if used[first] {
-            continue;
-        }
-        used[first] = true;
-        let mut chain = vec![pieces[first]];
-        let origin = pieces[first].start();
-        loop {
-            let last = chain[chain.len() - 1];
-            if last.end().distance(origin) <= r && (chain.len() > 1 || last.length() > 10.0 * r) {
-                loops.push(Contour::new(chain));
-                break;
-            }
-            let incoming = last.tangent_at(1.0);
-            let next = leaving(last.end())
-                .into_iter()
-                .filter(|&i| !used[i])
-                .max_by(|&a, &b| {
-                    turn_key(incoming, &pieces[a])
-                        .partial_cmp(&turn_key(incoming, &pieces[b]))
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                });
-            match next {
-                Some(i) => {
-                    used[i] = true;
-                    chain.push(pieces[i]);
-                }
-                None => {
-                    lost += chain.len();
-                    break;
-                }
-            }
-        }
-    }
-    (loops, lost)
-}
-
-/// How far left `next` turns after travelling along `incoming`: the turn angle (a reversal
-/// counts as the sharpest right turn), then the curvature.
-fn turn_key(incoming: crate::geom::Vector, next: &Segment) -> (f64, f64) {
-    let out = next.tangent_at(0.0);
-    let mut angle = incoming.cross(out).atan2(incoming.dot(out));
-    if angle >= std::f64::consts::PI - 1e-12 {
-        angle = -std::f64::consts::PI;
-    }
-    let curvature = match next {
-        Segment::Line(_) => 0.0,
-        Segment::Arc(a) => a.sweep.signum() / a.radius,
-    };
-    (angle, curvature)
+    let ends: Vec<Point> = pieces.iter().flat_map(|p| [p.start(), p.end()]).collect();
+    let node = cluster_points(&ends, 100.0 * tol.eps);
+    let pieces: Vec<Piece> = pieces
+        .into_iter()
+        .enumerate()
+        .map(|(i, segment)| Piece {
+            segment,
+            start: node[2 * i],
+            end: node[2 * i + 1],
+        })
+        .collect();
+    crate::geom::stitch(&pieces)
 }
 
 /// Groups loops into pockets: each clockwise loop goes to the smallest counter-clockwise loop

@@ -1,0 +1,124 @@
+//! Joining pieces of boundary into closed loops.
+//!
+//! Each piece knows the nodes at its ends (ids shared by the pieces that meet there), so loops
+//! are formed by how the pieces were made, not by loose proximity. Where several pieces leave
+//! a node, the one turning most to the left is taken: with the material on the left of every
+//! piece, two loops that touch at one point stay two loops.
+
+use super::{Contour, Point, Segment, Vector};
+use std::collections::HashMap;
+
+/// A piece of boundary, with the material on its left, between two nodes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// The geometry.
+    pub segment: Segment,
+    /// Node at the start.
+    pub start: usize,
+    /// Node at the end.
+    pub end: usize,
+}
+
+/// The closed loops the pieces form, and how many pieces could not be closed into one.
+///
+/// ```
+/// use pocketeer::geom::{stitch, Line, Piece, Point, Segment};
+/// let p = |x, y| Point::new(x, y);
+/// let corners = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+/// let pieces: Vec<Piece> = (0..4)
+///     .map(|k| Piece { segment: Segment::Line(Line::new(corners[k], corners[(k + 1) % 4])), start: k, end: (k + 1) % 4 })
+///     .collect();
+/// let (loops, lost) = stitch(&pieces);
+/// assert_eq!((loops.len(), lost), (1, 0));
+/// assert!((loops[0].signed_area() - 1.0).abs() < 1e-12);
+/// ```
+pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
+    let mut leaving: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        leaving.entry(p.start).or_default().push(i);
+    }
+    let mut used = vec![false; pieces.len()];
+    let mut loops = Vec::new();
+    let mut lost = 0;
+    for first in 0..pieces.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let mut chain = vec![first];
+        loop {
+            let last = &pieces[chain[chain.len() - 1]];
+            let incoming = last.segment.tangent_at(1.0);
+            let options = leaving.get(&last.end).map(Vec::as_slice).unwrap_or(&[]);
+            // The first piece is a candidate too: taking it closes the loop.
+            let next = options
+                .iter()
+                .copied()
+                .filter(|&i| !used[i] || i == first)
+                .max_by(|&a, &b| {
+                    turn_key(incoming, &pieces[a].segment)
+                        .partial_cmp(&turn_key(incoming, &pieces[b].segment))
+                        .unwrap_or(std::cmp::Ordering::Equal)
+                });
+            match next {
+                Some(i) if i == first => {
+                    loops.push(Contour::new(chain.iter().map(|&k| pieces[k].segment).collect()));
+                    break;
+                }
+                Some(i) => {
+                    used[i] = true;
+                    chain.push(i);
+                }
+                None => {
+                    lost += chain.len();
+                    break;
+                }
+            }
+        }
+    }
+    (loops, lost)
+}
+
+/// How far left `next` turns after travelling along `incoming`: the turn angle (a reversal
+/// counts as the sharpest right turn), then the curvature.
+fn turn_key(incoming: Vector, next: &Segment) -> (f64, f64) {
+    let out = next.tangent_at(0.0);
+    let mut angle = incoming.cross(out).atan2(incoming.dot(out));
+    if angle >= std::f64::consts::PI - 1e-12 {
+        angle = -std::f64::consts::PI;
+    }
+    let curvature = match next {
+        Segment::Line(_) => 0.0,
+        Segment::Arc(a) => a.sweep.signum() / a.radius,
+    };
+    (angle, curvature)
+}
+
+/// Node ids for points: points closer than `r` (transitively) share an id.
+pub fn cluster_points(points: &[Point], r: f64) -> Vec<usize> {
+    let cell = |p: Point| ((p.x / r).floor() as i64, (p.y / r).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut parent: Vec<usize> = (0..points.len()).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for (k, &p) in points.iter().enumerate() {
+        let (cx, cy) = cell(p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for &o in grid.get(&(cx + dx, cy + dy)).map(Vec::as_slice).unwrap_or(&[]) {
+                    if points[o].distance(p) <= r {
+                        let (a, b) = (find(&mut parent, o), find(&mut parent, k));
+                        parent[a] = b;
+                    }
+                }
+            }
+        }
+        grid.entry((cx, cy)).or_default().push(k);
+    }
+    (0..points.len()).map(|k| find(&mut parent, k)).collect()
+}
