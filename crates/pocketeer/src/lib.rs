@@ -10,6 +10,7 @@
 pub mod export;
 pub mod geom;
 pub mod import;
+pub mod offset;
 
 pub use import::{read_drawing, Drawing, ImportError, ImportOptions};
 

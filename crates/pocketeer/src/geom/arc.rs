@@ -131,8 +131,12 @@ impl Arc {
         self.start_angle + self.sweep * t
     }
 
-    /// The point at parameter `t`.
+    /// The point at parameter `t` (exactly [`Arc::start`] at 0 and [`Arc::end`] at 1, so that a
+    /// full circle closes on itself without rounding).
     pub fn point_at(&self, t: f64) -> Point {
+        if t == 1.0 {
+            return self.end();
+        }
         self.point_at_angle(self.angle_at(t))
     }
 

@@ -224,7 +224,7 @@ impl WindingIndex {
 mod tests {
     use super::*;
     use crate::geom::{Arc, Line};
-    use std::f64::consts::PI;
+    use std::f64::consts::{PI, TAU};
 
     fn slot() -> Contour {
         // A 10 x 4 rectangle whose right side is a half circle bulging outwards: area 40 + 2π.
@@ -240,6 +240,28 @@ mod tests {
     #[test]
     fn area_counts_arc_segments() {
         assert!((slot().signed_area() - (40.0 + 2.0 * PI)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_ray_through_the_seam_of_a_full_circle_counts_right() {
+        // The circle starts and ends on the ray from a point level with its centre.
+        for k in 1..200 {
+            let r = k as f64 * 0.37;
+            for sweep in [TAU, -TAU] {
+                let c = Contour::new(vec![Segment::Arc(Arc::new(
+                    Point::new(40.0, 30.0),
+                    r,
+                    0.0,
+                    sweep,
+                ))]);
+                assert_eq!(c.winding_number(Point::new(40.0 - r - 1e-4, 30.0)), 0, "r = {r}");
+                assert_eq!(
+                    c.winding_number(Point::new(40.0 - r + 1e-4, 30.0)).abs(),
+                    1,
+                    "r = {r}"
+                );
+            }
+        }
     }
 
     #[test]

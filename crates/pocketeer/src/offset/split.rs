@@ -1,0 +1,128 @@
+//! Breaking the raw offset (paper §5): every piece is cut where it meets another, found through
+//! a spatial index, so that afterwards no two pieces cross.
+
+use crate::geom::{intersect, Aabb, BoxIndex, Intersection, Line, Piece, Point, Segment, Tolerance};
+
+/// Union–find over node ids.
+pub struct Nodes {
+    parent: Vec<usize>,
+}
+
+impl Nodes {
+    /// `n` separate nodes.
+    pub fn new(n: usize) -> Nodes {
+        Nodes {
+            parent: (0..n).collect(),
+        }
+    }
+
+    /// A new node.
+    pub fn add(&mut self) -> usize {
+        self.parent.push(self.parent.len());
+        self.parent.len() - 1
+    }
+
+    /// The representative of `x`.
+    pub fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] != x {
+            self.parent[x] = self.parent[self.parent[x]];
+            x = self.parent[x];
+        }
+        x
+    }
+
+    /// Makes `a` and `b` one node.
+    pub fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            self.parent[ra.max(rb)] = ra.min(rb);
+        }
+    }
+}
+
+/// A cut: where on the piece (parameter), which node, and the point.
+type Cut = (f64, usize, Point);
+
+/// Cuts every piece where it meets another. Pieces meeting at a cut share its node; a cut at a
+/// piece's end is that end's node.
+pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece> {
+    let boxes: Vec<Aabb> = pieces
+        .iter()
+        .map(|p| p.segment.bbox().inflated(tol.eps))
+        .collect();
+    let index = BoxIndex::new(&boxes);
+    let mut cuts: Vec<Vec<Cut>> = vec![Vec::new(); pieces.len()];
+    let near_end = 10.0 * tol.eps;
+    // The node for parameter t on piece i: its end node when t is at an end, else None.
+    let end_node = |i: usize, t: f64| -> Option<usize> {
+        let len = pieces[i].segment.length();
+        if t * len <= near_end {
+            Some(pieces[i].start)
+        } else if (1.0 - t) * len <= near_end {
+            Some(pieces[i].end)
+        } else {
+            None
+        }
+    };
+    for (i, j) in index.pairs() {
+        let hits = intersect(&pieces[i].segment, &pieces[j].segment, tol.eps);
+        for h in hits.iter() {
+            let meets: Vec<(f64, f64, Point)> = match h {
+                Intersection::Point { point, ta, tb } => vec![(ta, tb, point)],
+                Intersection::Overlap { a, b } => {
+                    let s = &pieces[i].segment;
+                    vec![(a.0, b.0, s.point_at(a.0)), (a.1, b.1, s.point_at(a.1))]
+                }
+            };
+            for (ta, tb, p) in meets {
+                let node = match (end_node(i, ta), end_node(j, tb)) {
+                    (Some(x), Some(y)) => {
+                        nodes.union(x, y);
+                        x
+                    }
+                    (Some(x), None) | (None, Some(x)) => x,
+                    (None, None) => nodes.add(),
+                };
+                if end_node(i, ta).is_none() {
+                    cuts[i].push((ta, node, p));
+                }
+                if end_node(j, tb).is_none() {
+                    cuts[j].push((tb, node, p));
+                }
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(pieces.len() * 2);
+    for (i, piece) in pieces.iter().enumerate() {
+        let mut at = std::mem::take(&mut cuts[i]);
+        if at.is_empty() {
+            out.push(*piece);
+            continue;
+        }
+        at.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let s = &piece.segment;
+        let mut prev: Cut = (0.0, piece.start, s.start());
+        for cut in at.into_iter().chain(std::iter::once((1.0, piece.end, s.end()))) {
+            if (cut.0 - prev.0) * s.length() <= near_end {
+                // Two cuts at one place: one node.
+                nodes.union(prev.1, cut.1);
+                continue;
+            }
+            out.push(Piece {
+                segment: between(s, prev, cut),
+                start: prev.1,
+                end: cut.1,
+            });
+            prev = cut;
+        }
+    }
+    out
+}
+
+/// The part of `s` between two cuts, a line ending exactly on the cut points.
+fn between(s: &Segment, a: Cut, b: Cut) -> Segment {
+    match s {
+        Segment::Line(_) => Segment::Line(Line::new(a.2, b.2)),
+        Segment::Arc(_) => s.sub(a.0, b.0),
+    }
+}

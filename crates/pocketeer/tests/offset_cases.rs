@@ -1,0 +1,228 @@
+//! Offsets of pockets with known answers, and the invariants every offset loop must keep.
+
+use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::import::Pocket;
+use pocketeer::offset::{offset_contour, offset_pocket};
+use std::f64::consts::{PI, TAU};
+
+fn polygon(pts: &[(f64, f64)]) -> Contour {
+    let n = pts.len();
+    Contour::new(
+        (0..n)
+            .map(|k| {
+                let (a, b) = (pts[k], pts[(k + 1) % n]);
+                Segment::Line(Line::new(Point::new(a.0, a.1), Point::new(b.0, b.1)))
+            })
+            .collect(),
+    )
+}
+
+fn circle_cw(x: f64, y: f64, r: f64) -> Contour {
+    Contour::new(vec![Segment::Arc(Arc::new(Point::new(x, y), r, 0.0, -TAU))])
+}
+
+/// Every loop point lies at distance d from the original profile and inside the region.
+fn check_loops(pocket: &Pocket, loops: &[Contour], d: f64) {
+    let profile: Vec<Segment> = pocket
+        .boundary
+        .segments
+        .iter()
+        .chain(pocket.islands.iter().flat_map(|i| i.segments.iter()))
+        .copied()
+        .collect();
+    for l in loops {
+        for s in &l.segments {
+            for k in 0..=10 {
+                let p = s.point_at(k as f64 / 10.0);
+                let dist = profile
+                    .iter()
+                    .map(|o| point_distance(o, p))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    (dist - d).abs() <= 1e-6 * d.max(1.0),
+                    "{p:?} is {dist} from the profile, not {d}"
+                );
+                assert!(pocket.boundary.contains(p) || dist < d);
+            }
+        }
+        // Closed, exactly.
+        for w in 0..l.segments.len() {
+            let (a, b) = (l.segments[w], l.segments[(w + 1) % l.segments.len()]);
+            assert!(
+                a.end().distance(b.start()) < 1e-6,
+                "loop not closed: {:?} vs {:?}",
+                a.end(),
+                b.start()
+            );
+        }
+    }
+}
+
+fn area(loops: &[Contour]) -> f64 {
+    loops.iter().map(Contour::signed_area).sum()
+}
+
+#[test]
+fn rectangle_with_a_square_island_rounds_the_island_corners() {
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)]),
+        islands: vec![polygon(&[(40.0, 40.0), (40.0, 60.0), (60.0, 60.0), (60.0, 40.0)])],
+    };
+    let loops = offset_pocket(&pocket, 5.0, &Tolerance::default());
+    assert_eq!(loops.len(), 2);
+    let island = 900.0 - (4.0 - PI) * 25.0;
+    assert!(
+        (area(&loops) - (8100.0 - island)).abs() < 1e-9,
+        "{}",
+        area(&loops)
+    );
+    assert_eq!(loops.iter().filter(|l| l.is_ccw()).count(), 1);
+    check_loops(&pocket, &loops, 5.0);
+}
+
+#[test]
+fn a_distance_larger_than_the_pocket_gives_nothing() {
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]),
+        islands: vec![],
+    };
+    assert!(offset_pocket(&pocket, 6.0, &Tolerance::default()).is_empty());
+}
+
+#[test]
+fn a_neck_narrower_than_twice_the_distance_splits_the_pocket() {
+    // Two 40 x 40 rooms joined by a corridor 4 wide.
+    let pocket = Pocket {
+        boundary: polygon(&[
+            (0.0, 0.0),
+            (40.0, 0.0),
+            (40.0, 18.0),
+            (60.0, 18.0),
+            (60.0, 0.0),
+            (100.0, 0.0),
+            (100.0, 40.0),
+            (60.0, 40.0),
+            (60.0, 22.0),
+            (40.0, 22.0),
+            (40.0, 40.0),
+            (0.0, 40.0),
+        ]),
+        islands: vec![],
+    };
+    let wide = offset_pocket(&pocket, 1.5, &Tolerance::default());
+    assert_eq!(wide.len(), 1);
+    check_loops(&pocket, &wide, 1.5);
+    let narrow = offset_pocket(&pocket, 3.0, &Tolerance::default());
+    assert_eq!(narrow.len(), 2);
+    // Each room keeps 34 x 34, plus the sliver at the corridor's mouth between the arcs of
+    // radius 3 around its two corners (4 apart): 2 ∫₀² (3 - √(9 - u²)) du.
+    let integral = 2.0 * 5f64.sqrt() / 2.0 + 4.5 * (2.0f64 / 3.0).asin();
+    let mouth = 2.0 * (6.0 - integral);
+    assert!(
+        (area(&narrow) - 2.0 * (34.0 * 34.0 + mouth)).abs() < 1e-9,
+        "{}",
+        area(&narrow)
+    );
+    check_loops(&pocket, &narrow, 3.0);
+}
+
+#[test]
+fn arcs_smaller_than_the_distance_on_the_inside_disappear() {
+    // A 40 x 20 slot with half-circle ends of radius 10, offset by 4: a 40 x 12 slot of radius 6.
+    let p = Point::new;
+    let slot = Contour::new(vec![
+        Segment::Line(Line::new(p(0.0, 0.0), p(40.0, 0.0))),
+        Segment::Arc(Arc::new(p(40.0, 10.0), 10.0, -PI / 2.0, PI)),
+        Segment::Line(Line::new(p(40.0, 20.0), p(0.0, 20.0))),
+        Segment::Arc(Arc::new(p(0.0, 10.0), 10.0, PI / 2.0, PI)),
+    ]);
+    let loops = offset_contour(&slot, 4.0, &Tolerance::default());
+    assert_eq!(loops.len(), 1);
+    assert!((area(&loops) - (40.0 * 12.0 + PI * 36.0)).abs() < 1e-9);
+    // Outward by 5: radius 15 ends, lines moved out.
+    let out = offset_contour(&slot, -5.0, &Tolerance::default());
+    assert_eq!(out.len(), 1);
+    assert!(
+        (area(&out) - (40.0 * 30.0 + PI * 225.0)).abs() < 1e-9,
+        "{}",
+        area(&out)
+    );
+    // Inward by 10 or more: nothing left.
+    assert!(offset_contour(&slot, 10.5, &Tolerance::default()).is_empty());
+}
+
+#[test]
+fn islands_whose_offsets_overlap_merge() {
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (100.0, 0.0), (100.0, 60.0), (0.0, 60.0)]),
+        islands: vec![circle_cw(40.0, 30.0, 5.0), circle_cw(56.0, 30.0, 5.0)],
+    };
+    let d = 4.0;
+    let loops = offset_pocket(&pocket, d, &Tolerance::default());
+    // The two dilated islands (radius 9, 16 apart) overlap: one loop around both.
+    assert_eq!(loops.len(), 2);
+    let (r, s) = (9.0f64, 16.0f64);
+    let lens = 2.0 * r * r * (s / (2.0 * r)).acos() - s / 2.0 * (4.0 * r * r - s * s).sqrt();
+    let expected = 92.0 * 52.0 - (2.0 * PI * r * r - lens);
+    assert!(
+        (area(&loops) - expected).abs() < 1e-9,
+        "{} vs {expected}",
+        area(&loops)
+    );
+    check_loops(&pocket, &loops, d);
+}
+
+#[test]
+fn islands_exactly_two_d_apart_touch_without_merging_into_a_crossing_loop() {
+    // Radius 5 islands whose gap is exactly 2d = 8: their offsets touch at one point.
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (100.0, 0.0), (100.0, 60.0), (0.0, 60.0)]),
+        islands: vec![circle_cw(40.0, 30.0, 5.0), circle_cw(58.0, 30.0, 5.0)],
+    };
+    let loops = offset_pocket(&pocket, 4.0, &Tolerance::default());
+    let expected = 92.0 * 52.0 - 2.0 * PI * 81.0;
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}: {} loops",
+        area(&loops),
+        loops.len()
+    );
+    check_loops(&pocket, &loops, 4.0);
+}
+
+#[test]
+fn an_island_two_d_from_the_wall() {
+    // The island's offset touches the wall's offset at one point.
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (100.0, 0.0), (100.0, 60.0), (0.0, 60.0)]),
+        islands: vec![circle_cw(50.0, 13.0, 5.0)],
+    };
+    let loops = offset_pocket(&pocket, 4.0, &Tolerance::default());
+    let expected = 92.0 * 52.0 - PI * 81.0;
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}: {} loops",
+        area(&loops),
+        loops.len()
+    );
+    check_loops(&pocket, &loops, 4.0);
+}
+
+#[test]
+fn far_from_the_origin_and_tiny_distances() {
+    for (o, d) in [(1e5, 5.0), (0.0, 1e-4), (1e5, 1e-4)] {
+        let pocket = Pocket {
+            boundary: polygon(&[(o, o), (o + 100.0, o), (o + 100.0, o + 60.0), (o, o + 60.0)]),
+            islands: vec![circle_cw(o + 40.0, o + 30.0, 10.0)],
+        };
+        let tol = Tolerance::for_scale(o + 100.0, 0.001);
+        let loops = offset_pocket(&pocket, d, &tol);
+        assert_eq!(loops.len(), 2, "at {o} by {d}");
+        let expected = (100.0 - 2.0 * d) * (60.0 - 2.0 * d) - PI * (10.0 + d).powi(2);
+        assert!(
+            (area(&loops) - expected).abs() < 1e-6 * expected,
+            "{} vs {expected} at {o} by {d}",
+            area(&loops)
+        );
+    }
+}
