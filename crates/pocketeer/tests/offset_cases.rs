@@ -226,3 +226,86 @@ fn far_from_the_origin_and_tiny_distances() {
         );
     }
 }
+
+#[test]
+fn an_island_edge_whose_offset_coincides_with_the_wall_offset() {
+    // A square island whose bottom edge is exactly 2d above the bottom wall: the two offsets
+    // run along the same line for the island's width.
+    let d = 4.0;
+    let pocket = Pocket {
+        boundary: polygon(&[(0.0, 0.0), (100.0, 0.0), (100.0, 60.0), (0.0, 60.0)]),
+        islands: vec![polygon(&[(40.0, 8.0), (40.0, 28.0), (60.0, 28.0), (60.0, 8.0)])],
+    };
+    let loops = offset_pocket(&pocket, d, &Tolerance::default());
+    let island = 28.0 * 28.0 - (4.0 - PI) * 16.0;
+    // Everything below the island's offset is gone only along the shared line: the area is the
+    // plain difference, as the shared line has no width.
+    let expected = 92.0 * 52.0 - island;
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}: {} loops",
+        area(&loops),
+        loops.len()
+    );
+    check_loops(&pocket, &loops, d);
+    for l in &loops {
+        assert!(
+            l.signed_area().abs() > 1.0,
+            "a sliver loop of area {}",
+            l.signed_area()
+        );
+    }
+}
+
+#[test]
+fn a_neck_exactly_two_d_wide() {
+    let pocket = Pocket {
+        boundary: polygon(&[
+            (0.0, 0.0),
+            (40.0, 0.0),
+            (40.0, 17.0),
+            (60.0, 17.0),
+            (60.0, 0.0),
+            (100.0, 0.0),
+            (100.0, 40.0),
+            (60.0, 40.0),
+            (60.0, 23.0),
+            (40.0, 23.0),
+            (40.0, 40.0),
+            (0.0, 40.0),
+        ]),
+        islands: vec![],
+    };
+    let loops = offset_pocket(&pocket, 3.0, &Tolerance::default());
+    check_loops(&pocket, &loops, 3.0);
+    // The corridor collapses to a line of no area: what is left is the two rooms.
+    assert_eq!(loops.len(), 2);
+    for l in &loops {
+        assert!(l.signed_area() > 1.0, "a sliver loop of area {}", l.signed_area());
+    }
+}
+
+#[test]
+fn a_circle_of_2000_segments() {
+    let n = 2000;
+    let r = 50.0;
+    let pts: Vec<(f64, f64)> = (0..n)
+        .map(|k| (k as f64 / n as f64 * TAU).sin_cos())
+        .map(|(s, c)| (r * c, r * s))
+        .collect();
+    let pocket = Pocket {
+        boundary: polygon(&pts),
+        islands: vec![],
+    };
+    let loops = offset_pocket(&pocket, 5.0, &Tolerance::default());
+    assert_eq!(loops.len(), 1);
+    // The inward offset of a regular polygon is the regular polygon of apothem smaller by d.
+    let apothem = r * (PI / n as f64).cos() - 5.0;
+    let expected = n as f64 * apothem * apothem * (PI / n as f64).tan();
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        area(&loops)
+    );
+    check_loops(&pocket, &loops, 5.0);
+}

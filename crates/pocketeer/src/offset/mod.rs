@@ -7,7 +7,7 @@ mod split;
 
 use crate::geom::{stitch, Contour, Piece, Point, Tolerance};
 use crate::import::Pocket;
-use prune::{prune, Profile};
+use prune::{cancel_opposites, prune, Profile};
 use split::{split, Nodes};
 
 /// The loops of `pocket` eroded by `d` > 0: outer loops counter-clockwise, loops around
@@ -80,6 +80,7 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
             ..p
         })
         .collect();
+    let kept = cancel_opposites(kept, tol);
     let (loops, _lost) = stitch(&kept);
     loops
         .into_iter()

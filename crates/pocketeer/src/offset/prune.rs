@@ -46,3 +46,34 @@ pub fn prune(
         .filter(|p| !profile.nearer_than(&p.segment, d - slack, tol.eps))
         .collect()
 }
+
+/// Removes pairs of pieces that run along each other in opposite directions between the same
+/// two nodes: they bound no area (offsets of two walls exactly 2d apart coincide like this), and
+/// keeping them would make loops that run back over themselves.
+pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
+    let mut by_ends: std::collections::HashMap<(usize, usize), Vec<usize>> = std::collections::HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        by_ends.entry((p.start, p.end)).or_default().push(i);
+    }
+    let mut gone = vec![false; pieces.len()];
+    for (i, p) in pieces.iter().enumerate() {
+        if gone[i] {
+            continue;
+        }
+        let mid = p.segment.point_at(0.5);
+        let twin = by_ends.get(&(p.end, p.start)).and_then(|v| {
+            v.iter().copied().find(|&j| {
+                !gone[j] && j != i && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps
+            })
+        });
+        if let Some(j) = twin {
+            gone[i] = true;
+            gone[j] = true;
+        }
+    }
+    pieces
+        .into_iter()
+        .zip(gone)
+        .filter_map(|(p, g)| (!g).then_some(p))
+        .collect()
+}
