@@ -1,6 +1,7 @@
 //! The `pocketeer` command: a thin layer of argument parsing and messages over the library.
 
 mod length;
+mod output;
 mod report;
 
 use clap::{Args, Parser, Subcommand};
@@ -21,6 +22,8 @@ struct Cli {
 enum Command {
     /// Show what a drawing holds: units, layers, entities, contours, pockets and islands.
     Inspect(InspectArgs),
+    /// Offset every pocket of a drawing by a distance and write the loops as a DXF.
+    Offset(OffsetArgs),
 }
 
 /// How to read a drawing (shared by every command that reads one).
@@ -52,6 +55,21 @@ struct InspectArgs {
     json: bool,
 }
 
+#[derive(Args)]
+struct OffsetArgs {
+    #[command(flatten)]
+    drawing: DrawingArgs,
+    /// Offset distance (3, 3mm, 0.125in): positive shrinks the pockets, negative grows them.
+    #[arg(long, value_parser = length::parse_length, allow_hyphen_values = true)]
+    distance: f64,
+    /// The DXF file to write: closed LWPOLYLINEs with bulges, in the drawing's units.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Also draw the drawing and the loops in this SVG file.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
 /// A failure reported to the user: one message, exit code 2.
 struct Failure(String);
 
@@ -81,6 +99,58 @@ fn inspect(args: &InspectArgs) -> Result<(), Failure> {
     emit(&text)
 }
 
+fn offset(args: &OffsetArgs) -> Result<(), Failure> {
+    use pocketeer::export::{dxf, svg};
+    let analysis = read_analysis(&args.drawing)?;
+    let tol = &analysis.tolerance;
+    let loops: Vec<pocketeer::geom::Contour> = analysis
+        .regions
+        .pockets
+        .iter()
+        .flat_map(|p| pocketeer::offset::offset_pocket(p, args.distance, tol))
+        .collect();
+    let layered: Vec<dxf::LayeredContour> = loops
+        .iter()
+        .map(|c| dxf::LayeredContour {
+            layer: "offset",
+            contour: c,
+        })
+        .collect();
+    let text = dxf::write_dxf(&layered, analysis.drawing.units);
+    output::write_atomic(&args.output, text.as_bytes()).map_err(Failure)?;
+    if let Some(path) = &args.svg {
+        let walls: Vec<pocketeer::geom::Contour> = analysis
+            .regions
+            .pockets
+            .iter()
+            .flat_map(|p| std::iter::once(p.boundary.clone()).chain(p.islands.iter().cloned()))
+            .collect();
+        let doc = svg::svg_document(&[
+            svg::Layer {
+                name: "drawing",
+                stroke: "black",
+                fill: "#dde6f0",
+                contours: &walls,
+            },
+            svg::Layer {
+                name: "offset",
+                stroke: "#d03030",
+                fill: "none",
+                contours: &loops,
+            },
+        ]);
+        output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
+    }
+    eprintln!(
+        "{} pocket(s) offset by {} mm: {} loop(s) written to {}",
+        analysis.regions.pockets.len(),
+        args.distance,
+        loops.len(),
+        args.output.display()
+    );
+    Ok(())
+}
+
 /// Writes to standard output; a reader that stops early (`| head`) is not an error.
 fn emit(text: &str) -> Result<(), Failure> {
     use std::io::Write;
@@ -97,6 +167,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Inspect(args) => inspect(args),
+        Command::Offset(args) => offset(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

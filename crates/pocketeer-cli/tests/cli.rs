@@ -75,3 +75,59 @@ fn failures_name_the_file_and_exit_2() {
     let out = run(&["inspect", "--join-tolerance", "fast", "examples/bracket.dxf"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn offset_writes_a_dxf_that_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("loops.dxf");
+    let svg = dir.path().join("loops.svg");
+    let res = run(&[
+        "offset",
+        "examples/bracket.dxf",
+        "--distance",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(res.status.success(), "{}", String::from_utf8_lossy(&res.stderr));
+    assert!(String::from_utf8_lossy(&res.stderr).contains("4 loop(s)"));
+    let back = run(&["inspect", "--json", out.to_str().unwrap()]);
+    let v: serde_json::Value = serde_json::from_slice(&back.stdout).unwrap();
+    // 114 x 74 with corner radius 3, minus bosses of radius 12 and a 40 x 18 slot.
+    let pi = std::f64::consts::PI;
+    let expected = 114.0 * 74.0 - (4.0 - pi) * 9.0 - 2.0 * pi * 144.0 - (40.0 * 18.0 + pi * 81.0);
+    let area = v["pockets"][0]["area_mm2"].as_f64().unwrap();
+    assert!((area - expected).abs() < 2e-3, "{area} vs {expected}");
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // Only the two outputs: no temporary files left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+#[test]
+fn offset_lengths_take_units_and_a_failure_keeps_the_old_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("loops.dxf");
+    let res = run(&[
+        "offset",
+        "examples/bracket.dxf",
+        "--distance",
+        "-0.1in",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(res.status.success(), "{}", String::from_utf8_lossy(&res.stderr));
+    assert!(String::from_utf8_lossy(&res.stderr).contains("-2.54 mm"));
+    let before = std::fs::read(&out).unwrap();
+    let res = run(&[
+        "offset",
+        "README.md",
+        "--distance",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(res.status.code(), Some(2));
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+}

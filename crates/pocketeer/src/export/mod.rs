@@ -1,3 +1,4 @@
-//! Writing results out: DXF for CAD programs.
+//! Writing results out: DXF for CAD programs, SVG for a look.
 
 pub mod dxf;
+pub mod svg;

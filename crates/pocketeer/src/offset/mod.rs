@@ -27,11 +27,23 @@ use split::{split, Nodes};
 /// assert_eq!(loops.len(), 2);
 /// assert!((area - (90.0 * 50.0 - std::f64::consts::PI * 15.0 * 15.0)).abs() < 1e-9);
 /// ```
+///
+/// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink.
 pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Vec<Contour> {
     let mut contours = vec![pocket.boundary.clone()];
     contours.extend(pocket.islands.iter().cloned());
     let inside = |p: Point| pocket.boundary.contains(p) && !pocket.islands.iter().any(|i| i.contains(p));
-    erode(&contours, &inside, d, tol)
+    if d >= 0.0 {
+        erode(&contours, &inside, d, tol)
+    } else {
+        // Growing the pocket is eroding everything else.
+        let reversed: Vec<Contour> = contours.iter().map(Contour::reversed).collect();
+        let outside = |p: Point| !inside(p);
+        erode(&reversed, &outside, -d, tol)
+            .iter()
+            .map(Contour::reversed)
+            .collect()
+    }
 }
 
 /// The offset of one closed contour by `d`: inward for `d` > 0 (the contour's inside eroded),
