@@ -7,7 +7,7 @@ mod split;
 
 use crate::geom::{stitch, Contour, Piece, Point, Tolerance};
 use crate::import::Pocket;
-use prune::{cancel_opposites, prune, Profile};
+use prune::{cancel_opposites, prune, remove_dangling, Profile};
 use split::{split, Nodes};
 
 /// The loops of `pocket` eroded by `d` > 0: outer loops counter-clockwise, loops around
@@ -92,7 +92,7 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
             ..p
         })
         .collect();
-    let kept = cancel_opposites(kept, tol);
+    let kept = remove_dangling(cancel_opposites(kept, tol));
     let (loops, _lost) = stitch(&kept);
     loops
         .into_iter()

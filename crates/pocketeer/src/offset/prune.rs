@@ -38,7 +38,8 @@ pub fn prune(
     d: f64,
     tol: &Tolerance,
 ) -> Vec<Piece> {
-    let slack = (1e3 * tol.eps).min(1e-3 * d);
+    // Exact offset pieces are at distance d up to rounding, far below ten epsilons.
+    let slack = (10.0 * tol.eps).min(1e-3 * d);
     pieces
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
@@ -75,5 +76,60 @@ pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
         .into_iter()
         .zip(gone)
         .filter_map(|(p, g)| (!g).then_some(p))
+        .collect()
+}
+
+/// Removes pieces that cannot be part of a closed loop: those starting at a node no kept piece
+/// ends at, or ending where no kept piece starts. Such stubs are left where an invalid piece
+/// came within rounding of being valid; a true offset is made of closed loops only.
+pub fn remove_dangling(pieces: Vec<Piece>) -> Vec<Piece> {
+    use std::collections::HashMap;
+    let mut ins: HashMap<usize, usize> = HashMap::new();
+    let mut outs: HashMap<usize, usize> = HashMap::new();
+    for p in &pieces {
+        *outs.entry(p.start).or_default() += 1;
+        *ins.entry(p.end).or_default() += 1;
+    }
+    let mut alive = vec![true; pieces.len()];
+    let mut by_start: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut by_end: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        by_start.entry(p.start).or_default().push(i);
+        by_end.entry(p.end).or_default().push(i);
+    }
+    let dangling = |p: &Piece, ins: &HashMap<usize, usize>, outs: &HashMap<usize, usize>| {
+        ins.get(&p.start).copied().unwrap_or(0) == 0 || outs.get(&p.end).copied().unwrap_or(0) == 0
+    };
+    let mut queue: Vec<usize> = (0..pieces.len())
+        .filter(|&i| dangling(&pieces[i], &ins, &outs))
+        .collect();
+    while let Some(i) = queue.pop() {
+        if !alive[i] {
+            continue;
+        }
+        alive[i] = false;
+        let p = &pieces[i];
+        if let Some(n) = outs.get_mut(&p.start) {
+            *n -= 1;
+        }
+        if let Some(n) = ins.get_mut(&p.end) {
+            *n -= 1;
+        }
+        // Removing it may strand the pieces that led into its start or left from its end.
+        for &j in by_end
+            .get(&p.start)
+            .into_iter()
+            .flatten()
+            .chain(by_start.get(&p.end).into_iter().flatten())
+        {
+            if alive[j] && dangling(&pieces[j], &ins, &outs) {
+                queue.push(j);
+            }
+        }
+    }
+    pieces
+        .into_iter()
+        .zip(alive)
+        .filter_map(|(p, a)| a.then_some(p))
         .collect()
 }

@@ -1,0 +1,158 @@
+//! Offsets of random pockets with random islands keep their invariants, and their areas agree
+//! with an independent implementation (cavalier_contours, a dev-dependency oracle only).
+
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
+use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use pocketeer::geom::{intersect, point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
+use pocketeer::import::simple::make_simple;
+use pocketeer::import::Pocket;
+use pocketeer::offset::offset_pocket;
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+/// A star-shaped pocket (radii at evenly spread angles, some edges bulged a little) with
+/// circular islands kept clear of the wall and of each other.
+fn pocket() -> impl Strategy<Value = Pocket> {
+    (
+        prop::collection::vec((30.0..60.0f64, -0.15..0.15f64, any::<bool>()), 5..14),
+        prop::collection::vec((-25.0..25.0f64, -25.0..25.0f64, 1.0..6.0f64), 0..5),
+    )
+        .prop_map(|(spokes, holes)| {
+            let n = spokes.len();
+            let pts: Vec<Point> = spokes
+                .iter()
+                .enumerate()
+                .map(|(k, &(r, _, _))| {
+                    Point::new(0.0, 0.0) + Vector::from_angle(k as f64 / n as f64 * TAU) * r
+                })
+                .collect();
+            let segs = (0..n)
+                .map(|k| {
+                    let (a, b) = (pts[k], pts[(k + 1) % n]);
+                    let (_, bulge, curved) = spokes[k];
+                    match Arc::from_bulge(a, b, bulge) {
+                        Some(arc) if curved => Segment::Arc(arc),
+                        _ => Segment::Line(Line::new(a, b)),
+                    }
+                })
+                .collect();
+            let boundary = Contour::new(segs);
+            let mut islands: Vec<(Point, f64)> = Vec::new();
+            for (x, y, r) in holes {
+                let c = Point::new(x, y);
+                let clear_of_wall = boundary.segments.iter().all(|s| point_distance(s, c) > r + 1.0);
+                let clear_of_others = islands.iter().all(|&(o, ro)| o.distance(c) > r + ro + 1.0);
+                if clear_of_wall && clear_of_others && boundary.contains(c) {
+                    islands.push((c, r));
+                }
+            }
+            let islands = islands
+                .into_iter()
+                .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.3, -TAU))]))
+                .collect();
+            Pocket { boundary, islands }
+        })
+}
+
+fn to_pline(c: &Contour) -> Polyline<f64> {
+    let mut p = Polyline::new_closed();
+    for s in &c.segments {
+        let start = s.start();
+        let bulge = match s {
+            Segment::Line(_) => 0.0,
+            Segment::Arc(a) => a.bulge(),
+        };
+        p.add(start.x, start.y, bulge);
+    }
+    p
+}
+
+/// The oracle's area of the pocket eroded by `d`.
+fn cavalier_area(pocket: &Pocket, d: f64) -> f64 {
+    let mut plines = vec![to_pline(&pocket.boundary)];
+    for i in &pocket.islands {
+        // A full circle as two half arcs.
+        let Segment::Arc(a) = i.segments[0] else {
+            unreachable!()
+        };
+        let halves = Contour::new(vec![Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))]);
+        plines.push(to_pline(&halves));
+    }
+    let shape = Shape::from_plines(plines);
+    let out = shape.parallel_offset(d, &ShapeOffsetOptions::default());
+    out.ccw_plines.iter().map(|p| p.polyline.area()).sum::<f64>()
+        + out.cw_plines.iter().map(|p| p.polyline.area()).sum::<f64>()
+}
+
+fn profile(p: &Pocket) -> Vec<Segment> {
+    p.boundary
+        .segments
+        .iter()
+        .chain(p.islands.iter().flat_map(|i| i.segments.iter()))
+        .copied()
+        .collect()
+}
+
+fn area(loops: &[Contour]) -> f64 {
+    loops.iter().map(Contour::signed_area).sum()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn offsets_are_closed_simple_at_distance_d_and_inside(p in pocket(), d in 0.3..12.0f64) {
+        let tol = Tolerance::default();
+        let loops = offset_pocket(&p, d, &tol);
+        let prof = profile(&p);
+        for (k, l) in loops.iter().enumerate() {
+            let n = l.segments.len();
+            for w in 0..n {
+                prop_assert!(l.segments[w].end().distance(l.segments[(w + 1) % n].start()) < 1e-6);
+            }
+            let (_, slivers) = make_simple(l, &Tolerance { join: 1e-9, ..tol }).map_err(|x| TestCaseError::fail(format!("loop crosses itself at {:?}", x.point)))?;
+            prop_assert!(slivers.is_empty());
+            for s in &l.segments {
+                for i in 0..=8 {
+                    let q = s.point_at(i as f64 / 8.0);
+                    let dist = prof.iter().map(|o| point_distance(o, q)).fold(f64::INFINITY, f64::min);
+                    prop_assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "{:?} is {} from the profile, not {}", q, dist, d);
+                    prop_assert!(p.boundary.contains(q) && !p.islands.iter().any(|i| i.contains(q)));
+                }
+            }
+            for other in &loops[k + 1..] {
+                for a in &l.segments {
+                    for b in &other.segments {
+                        prop_assert!(intersect(a, b, 1e-9).is_empty(), "two loops meet");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn areas_agree_with_an_independent_implementation(p in pocket(), d in 0.3..12.0f64) {
+        let ours = area(&offset_pocket(&p, d, &Tolerance::default()));
+        let theirs = cavalier_area(&p, d);
+        prop_assert!((ours - theirs).abs() <= 1e-6 * (1.0 + theirs.abs()), "ours {} theirs {}", ours, theirs);
+    }
+
+    #[test]
+    fn start_point_and_translation_do_not_matter(p in pocket(), d in 0.3..12.0f64, shift in 1usize..20) {
+        let tol = Tolerance::for_scale(2e5, 0.001);
+        let base = area(&offset_pocket(&p, d, &tol));
+        let n = p.boundary.segments.len();
+        let mut rotated = p.boundary.segments.clone();
+        rotated.rotate_left(shift % n);
+        let turned = Pocket { boundary: Contour::new(rotated), islands: p.islands.clone() };
+        let turned_area = area(&offset_pocket(&turned, d, &tol));
+        prop_assert!((turned_area - base).abs() <= 1e-9 * (1.0 + base), "{} vs {}", turned_area, base);
+        let far = Vector::new(1e5, -1e5);
+        let moved = Pocket {
+            boundary: Contour::new(p.boundary.segments.iter().map(|s| s.translated(far)).collect()),
+            islands: p.islands.iter().map(|i| Contour::new(i.segments.iter().map(|s| s.translated(far)).collect())).collect(),
+        };
+        let loops = offset_pocket(&moved, d, &tol);
+        prop_assert!((area(&loops) - base).abs() <= 1e-6 * (1.0 + base), "{} vs {}", area(&loops), base);
+    }
+}
