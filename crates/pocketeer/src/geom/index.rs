@@ -1,8 +1,8 @@
 //! A spatial index over bounding boxes (an R*-tree from the `rstar` crate), for finding the
 //! pairs of elements that may touch without testing every pair.
 
-use super::{Aabb, Point};
-use rstar::{primitives::GeomWithData, primitives::Rectangle, RTree, AABB};
+use super::{point_distance, Aabb, Point, Segment};
+use rstar::{primitives::GeomWithData, primitives::Rectangle, PointDistance, RTree, RTreeObject, AABB};
 
 type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;
 
@@ -80,5 +80,52 @@ trait EnvelopeOf {
 impl EnvelopeOf for Rectangle<[f64; 2]> {
     fn envelope_of(&self) -> AABB<[f64; 2]> {
         AABB::from_corners(self.lower(), self.upper())
+    }
+}
+
+/// A segment filed in an R-tree by its bounding box.
+struct Filed(Segment);
+
+impl RTreeObject for Filed {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        envelope(&self.0.bbox())
+    }
+}
+
+impl PointDistance for Filed {
+    fn distance_2(&self, point: &[f64; 2]) -> f64 {
+        point_distance(&self.0, Point::new(point[0], point[1])).powi(2)
+    }
+}
+
+/// Segments indexed for nearest-distance queries: a best-first search through the R-tree
+/// visits only the few segments near the query point, however many there are.
+///
+/// ```
+/// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
+/// let segs: Vec<Segment> = (0..100)
+///     .map(|k| Segment::Line(Line::new(Point::new(k as f64, 0.0), Point::new(k as f64 + 1.0, 0.0))))
+///     .collect();
+/// let index = SegmentIndex::new(&segs);
+/// assert!((index.distance(Point::new(50.5, 3.0)) - 3.0).abs() < 1e-12);
+/// ```
+pub struct SegmentIndex {
+    tree: RTree<Filed>,
+}
+
+impl SegmentIndex {
+    /// Indexes `segments`.
+    pub fn new(segments: &[Segment]) -> SegmentIndex {
+        SegmentIndex {
+            tree: RTree::bulk_load(segments.iter().copied().map(Filed).collect()),
+        }
+    }
+
+    /// Distance from `p` to the nearest segment (infinite when there is none).
+    pub fn distance(&self, p: Point) -> f64 {
+        self.tree
+            .nearest_neighbor(&[p.x, p.y])
+            .map_or(f64::INFINITY, |f| point_distance(&f.0, p))
     }
 }

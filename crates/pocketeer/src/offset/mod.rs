@@ -5,7 +5,7 @@ mod prune;
 mod raw;
 mod split;
 
-use crate::geom::{stitch, Contour, Piece, Point, Tolerance};
+use crate::geom::{stitch, Contour, Piece, Point, Tolerance, WindingIndex};
 use crate::import::Pocket;
 use prune::{cancel_opposites, prune, remove_dangling, Profile};
 use split::{split, Nodes};
@@ -32,7 +32,8 @@ use split::{split, Nodes};
 pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Vec<Contour> {
     let mut contours = vec![pocket.boundary.clone()];
     contours.extend(pocket.islands.iter().cloned());
-    let inside = |p: Point| pocket.boundary.contains(p) && !pocket.islands.iter().any(|i| i.contains(p));
+    let within = region_test(&contours);
+    let inside = |p: Point| within(p);
     if d >= 0.0 {
         erode(&contours, &inside, d, tol)
     } else {
@@ -55,17 +56,33 @@ pub fn offset_contour(contour: &Contour, d: f64, tol: &Tolerance) -> Vec<Contour
     } else {
         contour.reversed()
     };
+    let within = region_test(std::slice::from_ref(&ccw));
     if d >= 0.0 {
-        let inside = |p: Point| ccw.contains(p);
+        let inside = |p: Point| within(p);
         erode(std::slice::from_ref(&ccw), &inside, d, tol)
     } else {
         // Dilating the inside is eroding the outside: offset the reversed contour, then turn the
         // loops so that they run counter-clockwise around the dilated shape.
-        let outside = |p: Point| !ccw.contains(p);
+        let outside = |p: Point| !within(p);
         erode(&[ccw.reversed()], &outside, -d, tol)
             .iter()
             .map(Contour::reversed)
             .collect()
+    }
+}
+
+/// Point-in-region test for a region whose contours have it on their left (an outer boundary
+/// counter-clockwise, islands clockwise): the winding numbers add up to 1 inside. Each contour
+/// gets a strip index, so a test costs a few segments, not all of them.
+fn region_test(contours: &[Contour]) -> impl Fn(Point) -> bool + '_ {
+    let indexes: Vec<WindingIndex> = contours.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+    move |p: Point| {
+        contours
+            .iter()
+            .zip(&indexes)
+            .map(|(c, i)| i.winding(&c.segments, p))
+            .sum::<i32>()
+            > 0
     }
 }
 
@@ -84,7 +101,7 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
     let mut nodes = Nodes::new(next_node);
     let pieces = split(&raw, &mut nodes, tol);
     let profile = Profile::new(contours);
-    let kept: Vec<Piece> = prune(pieces, &profile, inside, d, tol)
+    let pieces: Vec<Piece> = pieces
         .into_iter()
         .map(|p| Piece {
             start: nodes.find(p.start),
@@ -92,6 +109,7 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
             ..p
         })
         .collect();
+    let kept = prune(pieces, &profile, inside, d, tol);
     let kept = remove_dangling(cancel_opposites(kept, tol));
     let (loops, _lost) = stitch(&kept);
     loops

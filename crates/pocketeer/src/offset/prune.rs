@@ -1,36 +1,36 @@
 //! Throwing away invalid pieces (paper §6): a piece is kept only when it is nowhere closer than
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
-use crate::geom::{segment_distance, Aabb, BoxIndex, Contour, Piece, Point, Segment, Tolerance};
+use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
+use std::collections::HashMap;
 
 /// The original profile, indexed for distance queries.
-pub struct Profile<'a> {
-    segments: Vec<&'a Segment>,
-    index: BoxIndex,
+pub struct Profile {
+    index: SegmentIndex,
 }
 
-impl<'a> Profile<'a> {
+impl Profile {
     /// Indexes the segments of `contours`.
-    pub fn new(contours: &'a [Contour]) -> Profile<'a> {
-        let segments: Vec<&Segment> = contours.iter().flat_map(|c| c.segments.iter()).collect();
-        let boxes: Vec<Aabb> = segments.iter().map(|s| s.bbox()).collect();
+    pub fn new(contours: &[Contour]) -> Profile {
+        let segments: Vec<Segment> = contours.iter().flat_map(|c| c.segments.iter().copied()).collect();
         Profile {
-            index: BoxIndex::new(&boxes),
-            segments,
+            index: SegmentIndex::new(&segments),
         }
     }
 
-    /// True when `s` comes nearer than `limit` to any segment of the profile.
-    pub fn nearer_than(&self, s: &Segment, limit: f64, eps: f64) -> bool {
-        let reach = s.bbox().inflated(limit);
-        self.index
-            .intersecting(&reach)
-            .any(|k| segment_distance(s, self.segments[k], eps).0 < limit)
+    /// Distance from `p` to the profile.
+    pub fn distance(&self, p: Point) -> f64 {
+        self.index.distance(p)
     }
 }
 
-/// The pieces that belong to the offset at distance `d`: not nearer than d to the profile
-/// (less a tolerance that absorbs rounding) and with their middle inside the region.
+/// The pieces that belong to the offset at distance `d`: not nearer than d to the profile (less
+/// a tolerance that absorbs rounding) and inside the region. Node ids must be canonical.
+///
+/// Along a raw offset curve, the distance to the profile can fall below d only where the curve
+/// meets another raw offset curve, and the split stage cut every piece there. So pieces joined
+/// end to start at a node no other piece touches (a run) are valid or invalid together, and one
+/// point of each run decides: the middle of its longest piece.
 pub fn prune(
     pieces: Vec<Piece>,
     profile: &Profile,
@@ -40,12 +40,60 @@ pub fn prune(
 ) -> Vec<Piece> {
     // Exact offset pieces are at distance d up to rounding, far below ten epsilons.
     let slack = (10.0 * tol.eps).min(1e-3 * d);
-    pieces
+    let pieces: Vec<Piece> = pieces
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
-        .filter(|p| inside(p.segment.point_at(0.5)))
-        .filter(|p| !profile.nearer_than(&p.segment, d - slack, tol.eps))
+        .collect();
+    let run = runs(&pieces);
+    // The longest piece of each run.
+    let mut longest: HashMap<usize, usize> = HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        let best = longest.entry(run[i]).or_insert(i);
+        if p.segment.length() > pieces[*best].segment.length() {
+            *best = i;
+        }
+    }
+    let valid: HashMap<usize, bool> = longest
+        .iter()
+        .map(|(&r, &i)| {
+            let m = pieces[i].segment.point_at(0.5);
+            (r, profile.distance(m) >= d - slack && inside(m))
+        })
+        .collect();
+    pieces
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| valid[&run[*i]])
+        .map(|(_, p)| p)
         .collect()
+}
+
+/// The run each piece belongs to: pieces are joined through nodes where exactly one piece
+/// ends and exactly one starts.
+fn runs(pieces: &[Piece]) -> Vec<usize> {
+    let mut ins: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut outs: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        outs.entry(p.start).or_default().push(i);
+        ins.entry(p.end).or_default().push(i);
+    }
+    let mut parent: Vec<usize> = (0..pieces.len()).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for (node, into) in &ins {
+        if let (1, Some(from)) = (into.len(), outs.get(node)) {
+            if from.len() == 1 {
+                let (a, b) = (find(&mut parent, into[0]), find(&mut parent, from[0]));
+                parent[a] = b;
+            }
+        }
+    }
+    (0..pieces.len()).map(|i| find(&mut parent, i)).collect()
 }
 
 /// Removes pairs of pieces that run along each other in opposite directions between the same

@@ -5,43 +5,57 @@ use crate::geom::{Arc, Contour, Line, Piece, Segment, Tolerance};
 use std::f64::consts::PI;
 
 /// The raw offset of a closed contour by `d` to its left (the side the material to remove is
-/// on), as pieces whose node ids start at `next_node`; returns the pieces and the next free id.
+/// on), as a closed ring of pieces whose node ids start at `next_node`; returns the pieces and
+/// the next free id.
 ///
-/// Consecutive pieces share a node where they meet: where the moved elements part (a turn to
-/// the right), a node arc joins them; where they overlap (a turn to the left), their ends stay
-/// apart and the split stage finds where they cross.
+/// Consecutive moved elements share a node where they meet. Where they part (a turn to the
+/// right), an arc of radius d around the joint closes the gap; where they overlap (a turn to the
+/// left) or an element collapsed, a short line joins their ends, and the split stage cuts the
+/// overlap away. Every ring is closed, so a crossing missed by rounding at a nearly tangent
+/// joint cannot break a loop open.
 pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usize) -> (Vec<Piece>, usize) {
     let segs = &contour.segments;
-    let n = segs.len();
-    let moved: Vec<Option<Segment>> = segs.iter().map(|s| offset_segment(s, d, tol)).collect();
-    let mut pieces = Vec::with_capacity(2 * n);
-    // Node at the start of each moved element: shared with the previous element's end when the
-    // two meet, fresh otherwise.
-    let first_node = next_node;
-    let mut start_node = vec![usize::MAX; n];
-    let mut end_node = vec![usize::MAX; n];
-    for k in 0..n {
-        start_node[k] = next_node;
-        next_node += 1;
-        end_node[k] = next_node; // provisional; fixed below where the next element meets it
-        next_node += 1;
+    // The moved elements that did not collapse, with the index of their original.
+    let moved: Vec<(usize, Segment)> = segs
+        .iter()
+        .enumerate()
+        .filter_map(|(k, s)| offset_segment(s, d, tol).map(|m| (k, m)))
+        .collect();
+    let n = moved.len();
+    if n == 0 {
+        return (Vec::new(), next_node);
     }
-    let mut joints: Vec<Option<Piece>> = vec![None; n];
-    for k in 0..n {
-        let j = (k + 1) % n;
-        let (Some(a), Some(b)) = (moved[k], moved[j]) else {
-            continue;
-        };
-        let gap = a.end().distance(b.start());
-        if gap <= 10.0 * tol.eps {
-            end_node[k] = start_node[j];
+    let first = next_node;
+    next_node += n;
+    // Node at the start of moved element i is first + i; its end is the next one's start, with
+    // a joining piece between them where they do not meet.
+    let mut pieces = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let (k, a) = moved[i];
+        let (j, b) = moved[(i + 1) % n];
+        let start = first + i;
+        let next_start = first + (i + 1) % n;
+        if a.end().distance(b.start()) <= 10.0 * tol.eps {
+            pieces.push(Piece {
+                segment: a,
+                start,
+                end: next_start,
+            });
             continue;
         }
+        let end = next_node;
+        next_node += 1;
+        pieces.push(Piece {
+            segment: a,
+            start,
+            end,
+        });
         let t_in = segs[k].tangent_at(1.0);
         let t_out = segs[j].tangent_at(0.0);
-        if t_in.cross(t_out) < 0.0 || (t_in.cross(t_out) == 0.0 && t_in.dot(t_out) < 0.0) {
-            // A turn to the right: the moved elements part; an arc of radius d around the
-            // joint closes the gap, turning the same way.
+        let adjacent = (k + 1) % segs.len() == j;
+        let right_turn = t_in.cross(t_out) < 0.0 || (t_in.cross(t_out) == 0.0 && t_in.dot(t_out) < 0.0);
+        let join = if adjacent && right_turn {
+            // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
             let a0 = (a.end() - corner).angle();
             let a1 = (b.start() - corner).angle();
@@ -49,27 +63,16 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
             if sweep > 0.0 {
                 sweep -= 2.0 * PI;
             }
-            let arc = Arc::new(corner, d, a0, sweep);
-            joints[k] = Some(Piece {
-                segment: Segment::Arc(arc),
-                start: end_node[k],
-                end: start_node[j],
-            });
-        }
+            Segment::Arc(Arc::new(corner, d, a0, sweep))
+        } else {
+            Segment::Line(Line::new(a.end(), b.start()))
+        };
+        pieces.push(Piece {
+            segment: join,
+            start: end,
+            end: next_start,
+        });
     }
-    for k in 0..n {
-        if let Some(s) = moved[k] {
-            pieces.push(Piece {
-                segment: s,
-                start: start_node[k],
-                end: end_node[k],
-            });
-        }
-        if let Some(p) = joints[k] {
-            pieces.push(p);
-        }
-    }
-    debug_assert!(next_node >= first_node);
     (pieces, next_node)
 }
 
@@ -114,6 +117,11 @@ mod tests {
         let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0);
         assert_eq!(pieces.len(), 8);
         assert_eq!(next, 8);
+        assert!(pieces
+            .iter()
+            .skip(1)
+            .step_by(2)
+            .all(|p| matches!(p.segment, Segment::Arc(_))));
         let area = crate::geom::signed_area(&pieces.iter().map(|p| p.segment).collect::<Vec<_>>());
         // Clockwise: 14 x 14 square with rounded corners, negative.
         assert!((area + (196.0 - (4.0 - PI) * 4.0)).abs() < 1e-9, "{area}");
