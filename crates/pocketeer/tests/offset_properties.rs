@@ -93,6 +93,30 @@ fn profile(p: &Pocket) -> Vec<Segment> {
         .collect()
 }
 
+/// The loops `b` (moved back by `shift`) are the loops `a`: as many, and every point of each
+/// within `within` of the other set, both ways.
+fn same_loops(a: &[Contour], b: &[Contour], shift: Vector, within: f64) -> Result<(), TestCaseError> {
+    prop_assert_eq!(a.len(), b.len());
+    let back: Vec<Segment> = b
+        .iter()
+        .flat_map(|l| l.segments.iter().map(|s| s.translated(-shift)))
+        .collect();
+    let fwd: Vec<Segment> = a.iter().flat_map(|l| l.segments.iter().copied()).collect();
+    for (from, to) in [(&fwd, &back), (&back, &fwd)] {
+        for s in from.iter() {
+            for k in 0..=4 {
+                let q = s.point_at(k as f64 / 4.0);
+                let dist = to
+                    .iter()
+                    .map(|o| point_distance(o, q))
+                    .fold(f64::INFINITY, f64::min);
+                prop_assert!(dist <= within, "{:?} is {} from the other result", q, dist);
+            }
+        }
+    }
+    Ok(())
+}
+
 fn area(loops: &[Contour]) -> f64 {
     loops.iter().map(Contour::signed_area).sum()
 }
@@ -140,19 +164,20 @@ proptest! {
     #[test]
     fn start_point_and_translation_do_not_matter(p in pocket(), d in 0.3..12.0f64, shift in 1usize..20) {
         let tol = Tolerance::for_scale(2e5, 0.001);
-        let base = area(&offset_pocket(&p, d, &tol));
+        let base = offset_pocket(&p, d, &tol);
         let n = p.boundary.segments.len();
         let mut rotated = p.boundary.segments.clone();
         rotated.rotate_left(shift % n);
         let turned = Pocket { boundary: Contour::new(rotated), islands: p.islands.clone() };
-        let turned_area = area(&offset_pocket(&turned, d, &tol));
-        prop_assert!((turned_area - base).abs() <= 1e-9 * (1.0 + base), "{} vs {}", turned_area, base);
+        // The engine joins ends closer than ten epsilons (2e-5 mm at this scale): results may
+        // differ by that much, and by no more.
+        let within = 20.0 * tol.eps;
+        same_loops(&base, &offset_pocket(&turned, d, &tol), Vector::new(0.0, 0.0), within)?;
         let far = Vector::new(1e5, -1e5);
         let moved = Pocket {
             boundary: Contour::new(p.boundary.segments.iter().map(|s| s.translated(far)).collect()),
             islands: p.islands.iter().map(|i| Contour::new(i.segments.iter().map(|s| s.translated(far)).collect())).collect(),
         };
-        let loops = offset_pocket(&moved, d, &tol);
-        prop_assert!((area(&loops) - base).abs() <= 1e-6 * (1.0 + base), "{} vs {}", area(&loops), base);
+        same_loops(&base, &offset_pocket(&moved, d, &tol), far, within)?;
     }
 }

@@ -243,6 +243,7 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
         candidates[1] = Some(s + k);
     }
     for t in candidates.into_iter().flatten() {
+        let t = refine_on_line(l, c, t);
         if t < -slack || t > 1.0 + slack {
             continue;
         }
@@ -262,6 +263,42 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
         }
     }
     out
+}
+
+/// Newton steps on t for |l(t) - centre| = radius: the closed form loses precision when the
+/// radius is huge (a nearly flat arc), the iteration does not. Skipped near tangency, where
+/// the closed form is the better of the two.
+fn refine_on_line(l: &Line, c: &Arc, mut t: f64) -> f64 {
+    let d = l.delta();
+    for _ in 0..3 {
+        let v = l.point_at(t) - c.center;
+        let dist = v.length();
+        let slope = v.dot(d) / dist;
+        if slope.is_nan() || slope.abs() <= 1e-3 * d.length() {
+            break;
+        }
+        t -= (dist - c.radius) / slope;
+    }
+    t
+}
+
+/// Newton steps on p for |p - c1| = r1 and |p - c2| = r2 (see [`refine_on_line`]).
+fn refine_on_circles(c1: &Arc, c2: &Arc, mut p: Point) -> Point {
+    for _ in 0..3 {
+        let (v1, v2) = (p - c1.center, p - c2.center);
+        let (l1, l2) = (v1.length(), v2.length());
+        let (g1, g2) = (v1 / l1, v2 / l2);
+        let det = g1.cross(g2);
+        if det.is_nan() || det.abs() <= 1e-3 {
+            break;
+        }
+        let (f1, f2) = (l1 - c1.radius, l2 - c2.radius);
+        // Solve [g1; g2] δ = -(f1, f2).
+        let dx = (-f1 * g2.y + f2 * g1.y) / det;
+        let dy = (-g1.x * f2 + g2.x * f1) / det;
+        p = Point::new(p.x + dx, p.y + dy);
+    }
+    p
 }
 
 /// Intersections of two arcs.
@@ -295,6 +332,7 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
         pts[1] = Some(base - u.perp() * h);
     }
     for p in pts.into_iter().flatten() {
+        let p = refine_on_circles(c1, c2, p);
         let a1 = (p - c1.center).angle();
         let a2 = (p - c2.center).angle();
         if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {

@@ -1,7 +1,7 @@
 //! Raw offset (paper §4): every line moved sideways by d, every arc's radius changed by d, and
 //! an arc of radius d around every joint where the moved elements part.
 
-use crate::geom::{Arc, Contour, Line, Piece, Segment, Tolerance};
+use crate::geom::{intersect, Arc, Contour, Intersection, Line, Piece, Segment, Tolerance};
 use std::f64::consts::PI;
 
 /// The raw offset of a closed contour by `d` to its left (the side the material to remove is
@@ -25,6 +25,36 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
     if n == 0 {
         return (Vec::new(), next_node);
     }
+    // Where the moved elements overlap at a turn to the left, trim both to their crossing
+    // nearest the joint (so they meet in one node), as long as each keeps some length.
+    let mut from = vec![0.0; n];
+    let mut to = vec![1.0; n];
+    let mut meets = vec![false; n];
+    for i in 0..n {
+        let (k, a) = moved[i];
+        let (j, b) = moved[(i + 1) % n];
+        if a.end().distance(b.start()) <= 10.0 * tol.eps {
+            meets[i] = true;
+            continue;
+        }
+        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j]) || n < 2 {
+            continue;
+        }
+        let corner = segs[k].end();
+        let crossing = intersect(&a, &b, tol.eps)
+            .iter()
+            .filter_map(|h| match h {
+                Intersection::Point { point, ta, tb } => Some((point, ta, tb)),
+                Intersection::Overlap { .. } => None,
+            })
+            .filter(|&(_, ta, tb)| ta > from[i] && tb < to[(i + 1) % n])
+            .min_by(|x, y| x.0.distance(corner).total_cmp(&y.0.distance(corner)));
+        if let Some((_, ta, tb)) = crossing {
+            to[i] = ta;
+            from[(i + 1) % n] = tb;
+            meets[i] = true;
+        }
+    }
     let first = next_node;
     next_node += n;
     // Node at the start of moved element i is first + i; its end is the next one's start, with
@@ -33,9 +63,19 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
     for i in 0..n {
         let (k, a) = moved[i];
         let (j, b) = moved[(i + 1) % n];
+        let a = if from[i] > 0.0 || to[i] < 1.0 {
+            a.sub(from[i], to[i])
+        } else {
+            a
+        };
+        let b_start = if from[(i + 1) % n] > 0.0 {
+            b.point_at(from[(i + 1) % n])
+        } else {
+            b.start()
+        };
         let start = first + i;
         let next_start = first + (i + 1) % n;
-        if a.end().distance(b.start()) <= 10.0 * tol.eps {
+        if meets[i] {
             pieces.push(Piece {
                 segment: a,
                 start,
@@ -50,22 +90,18 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
             start,
             end,
         });
-        let t_in = segs[k].tangent_at(1.0);
-        let t_out = segs[j].tangent_at(0.0);
-        let adjacent = (k + 1) % segs.len() == j;
-        let right_turn = t_in.cross(t_out) < 0.0 || (t_in.cross(t_out) == 0.0 && t_in.dot(t_out) < 0.0);
-        let join = if adjacent && right_turn {
+        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j]) {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
             let a0 = (a.end() - corner).angle();
-            let a1 = (b.start() - corner).angle();
+            let a1 = (b_start - corner).angle();
             let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
             if sweep > 0.0 {
                 sweep -= 2.0 * PI;
             }
             Segment::Arc(Arc::new(corner, d, a0, sweep))
         } else {
-            Segment::Line(Line::new(a.end(), b.start()))
+            Segment::Line(Line::new(a.end(), b_start))
         };
         pieces.push(Piece {
             segment: join,
@@ -74,6 +110,13 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
         });
     }
     (pieces, next_node)
+}
+
+/// True when the contour turns right (or straight back) from `a` into `b`.
+fn right_turn(a: &Segment, b: &Segment) -> bool {
+    let (t_in, t_out) = (a.tangent_at(1.0), b.tangent_at(0.0));
+    let c = t_in.cross(t_out);
+    c < 0.0 || (c == 0.0 && t_in.dot(t_out) < 0.0)
 }
 
 /// One element moved by `d` to its left; `None` when it collapses to a point.
