@@ -122,6 +122,16 @@ impl SegmentIndex {
         }
     }
 
+    /// True when some segment comes nearer to `p` than `r`: stops at the first one found, so it
+    /// is cheaper than [`SegmentIndex::distance`] when the answer is yes.
+    pub fn any_within(&self, p: Point, r: f64) -> bool {
+        r > 0.0
+            && self
+                .tree
+                .locate_within_distance([p.x, p.y], r * r)
+                .any(|f| point_distance(&f.0, p) < r)
+    }
+
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
         self.tree

@@ -33,9 +33,11 @@ pub struct Piece {
 /// assert!((loops[0].signed_area() - 1.0).abs() < 1e-12);
 /// ```
 pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
-    let mut leaving: HashMap<usize, Vec<usize>> = HashMap::new();
+    // Node ids are small integers (indices of some list): a vector indexed by them.
+    let nodes = pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0);
+    let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); nodes];
     for (i, p) in pieces.iter().enumerate() {
-        leaving.entry(p.start).or_default().push(i);
+        leaving[p.start].push(i);
     }
     let mut used = vec![false; pieces.len()];
     let mut loops = Vec::new();
@@ -49,7 +51,7 @@ pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
         loop {
             let last = &pieces[chain[chain.len() - 1]];
             let incoming = last.segment.tangent_at(1.0);
-            let options = leaving.get(&last.end).map(Vec::as_slice).unwrap_or(&[]);
+            let options = leaving[last.end].as_slice();
             // The first piece is a candidate too: taking it closes the loop.
             let next = options
                 .iter()

@@ -2,7 +2,6 @@
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
-use std::collections::HashMap;
 
 /// The original profile, indexed for distance queries.
 pub struct Profile {
@@ -18,9 +17,9 @@ impl Profile {
         }
     }
 
-    /// Distance from `p` to the profile.
-    pub fn distance(&self, p: Point) -> f64 {
-        self.index.distance(p)
+    /// True when the profile comes nearer to `p` than `r`.
+    pub fn nearer_than(&self, p: Point, r: f64) -> bool {
+        self.index.any_within(p, r)
     }
 }
 
@@ -45,37 +44,47 @@ pub fn prune(
         .filter(|p| p.segment.length() > tol.eps)
         .collect();
     let run = runs(&pieces);
-    // The longest piece of each run.
-    let mut longest: HashMap<usize, usize> = HashMap::new();
+    // The longest piece of each run (runs are numbered by one of their pieces).
+    let mut longest: Vec<usize> = vec![usize::MAX; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
-        let best = longest.entry(run[i]).or_insert(i);
-        if p.segment.length() > pieces[*best].segment.length() {
+        let best = &mut longest[run[i]];
+        if *best == usize::MAX || p.segment.length() > pieces[*best].segment.length() {
             *best = i;
         }
     }
-    let valid: HashMap<usize, bool> = longest
+    let valid: Vec<bool> = longest
         .iter()
-        .map(|(&r, &i)| {
-            let m = pieces[i].segment.point_at(0.5);
-            (r, profile.distance(m) >= d - slack && inside(m))
+        .map(|&i| {
+            i != usize::MAX && {
+                let m = pieces[i].segment.point_at(0.5);
+                !profile.nearer_than(m, d - slack) && inside(m)
+            }
         })
         .collect();
     pieces
         .into_iter()
         .enumerate()
-        .filter(|(i, _)| valid[&run[*i]])
+        .filter(|(i, _)| valid[run[*i]])
         .map(|(_, p)| p)
         .collect()
+}
+
+/// One more than the largest node id.
+fn node_count(pieces: &[Piece]) -> usize {
+    pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0)
 }
 
 /// The run each piece belongs to: pieces are joined through nodes where exactly one piece
 /// ends and exactly one starts.
 fn runs(pieces: &[Piece]) -> Vec<usize> {
-    let mut ins: HashMap<usize, Vec<usize>> = HashMap::new();
-    let mut outs: HashMap<usize, Vec<usize>> = HashMap::new();
+    let nodes = node_count(pieces);
+    let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
+    let (mut into, mut from) = (vec![usize::MAX; nodes], vec![usize::MAX; nodes]);
     for (i, p) in pieces.iter().enumerate() {
-        outs.entry(p.start).or_default().push(i);
-        ins.entry(p.end).or_default().push(i);
+        outs[p.start] += 1;
+        from[p.start] = i;
+        ins[p.end] += 1;
+        into[p.end] = i;
     }
     let mut parent: Vec<usize> = (0..pieces.len()).collect();
     fn find(parent: &mut [usize], mut x: usize) -> usize {
@@ -85,12 +94,10 @@ fn runs(pieces: &[Piece]) -> Vec<usize> {
         }
         x
     }
-    for (node, into) in &ins {
-        if let (1, Some(from)) = (into.len(), outs.get(node)) {
-            if from.len() == 1 {
-                let (a, b) = (find(&mut parent, into[0]), find(&mut parent, from[0]));
-                parent[a] = b;
-            }
+    for node in 0..nodes {
+        if ins[node] == 1 && outs[node] == 1 {
+            let (a, b) = (find(&mut parent, into[node]), find(&mut parent, from[node]));
+            parent[a] = b;
         }
     }
     (0..pieces.len()).map(|i| find(&mut parent, i)).collect()
