@@ -2,7 +2,7 @@
 //! same inputs, every level from the original shape, and prints a Markdown table of medians and
 //! ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick]`.
 
-mod cases;
+use pocketeer_bench::cases;
 
 use cases::{Case, Ring};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};

@@ -1,8 +1,7 @@
 //! Prints, level by level, where pocketeer's and cavalier_contours' offset areas differ for the
 //! smooth-profile case: `cargo run --release --bin levels -- N arcs|lines`.
 
-#[path = "../cases.rs"]
-mod cases;
+use pocketeer_bench::cases;
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};

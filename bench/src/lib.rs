@@ -1,0 +1,3 @@
+//! Benchmark inputs shared by the bench binaries.
+
+pub mod cases;
