@@ -96,9 +96,10 @@ impl Vector {
         self.x * o.y - self.y * o.x
     }
 
-    /// Length.
+    /// Length. (A plain square root: coordinates are bounded far below where squaring could
+    /// overflow, and `hypot` costs several times more in the hot loops.)
     pub fn length(self) -> f64 {
-        self.x.hypot(self.y)
+        (self.x * self.x + self.y * self.y).sqrt()
     }
 
     /// Squared length.

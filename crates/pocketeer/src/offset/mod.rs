@@ -10,6 +10,74 @@ use crate::import::Pocket;
 use prune::{cancel_opposites, prune, remove_dangling, Profile};
 use split::{split, Nodes};
 
+/// A region prepared for offsetting by many distances: its profile indexed for distance
+/// queries and its contours for point-in-region tests, once.
+///
+/// ```
+/// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
+/// use pocketeer::import::Pocket;
+/// use pocketeer::offset::Region;
+/// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
+/// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
+/// let tol = Tolerance::default();
+/// let radii: Vec<f64> = (1..5).map(|k| region.offset(2.0 * k as f64, &tol)[0].signed_area()).collect();
+/// assert!((radii[3] - std::f64::consts::PI * 4.0).abs() < 1e-9);
+/// ```
+pub struct Region {
+    /// Contours with the region on their left: boundary counter-clockwise, islands clockwise.
+    contours: Vec<Contour>,
+    /// The same contours reversed: the complement on their left.
+    reversed: Vec<Contour>,
+    profile: Profile,
+    winding: Vec<WindingIndex>,
+}
+
+impl Region {
+    /// Prepares `pocket` (boundary counter-clockwise, islands clockwise).
+    pub fn new(pocket: &Pocket) -> Region {
+        let mut contours = vec![pocket.boundary.clone()];
+        contours.extend(pocket.islands.iter().cloned());
+        Region::from_contours(contours)
+    }
+
+    fn from_contours(contours: Vec<Contour>) -> Region {
+        let reversed = contours.iter().map(Contour::reversed).collect();
+        let profile = Profile::new(&contours);
+        let winding = contours.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+        Region {
+            contours,
+            reversed,
+            profile,
+            winding,
+        }
+    }
+
+    /// True when `p` (not on a contour) lies in the region: the winding numbers of the
+    /// counter-clockwise boundary and clockwise islands add up to 1 there.
+    pub fn contains(&self, p: Point) -> bool {
+        self.contours
+            .iter()
+            .zip(&self.winding)
+            .map(|(c, i)| i.winding(&c.segments, p))
+            .sum::<i32>()
+            > 0
+    }
+
+    /// The region eroded by `d` > 0 (grown by |d| for `d` < 0): loops counter-clockwise around
+    /// material, clockwise around holes.
+    pub fn offset(&self, d: f64, tol: &Tolerance) -> Vec<Contour> {
+        if d >= 0.0 {
+            erode(&self.contours, &self.profile, &|p| self.contains(p), d, tol)
+        } else {
+            // Growing the region is eroding everything else.
+            erode(&self.reversed, &self.profile, &|p| !self.contains(p), -d, tol)
+                .iter()
+                .map(Contour::reversed)
+                .collect()
+        }
+    }
+}
+
 /// The loops of `pocket` eroded by `d` > 0: outer loops counter-clockwise, loops around
 /// islands clockwise, made of exact lines and arcs. Empty when nothing of the pocket is
 /// farther than `d` from its walls and islands.
@@ -29,22 +97,11 @@ use split::{split, Nodes};
 /// ```
 ///
 /// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink.
+///
+/// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink. To offset
+/// one pocket by many distances, prepare it once with [`Region`].
 pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Vec<Contour> {
-    let mut contours = vec![pocket.boundary.clone()];
-    contours.extend(pocket.islands.iter().cloned());
-    let within = region_test(&contours);
-    let inside = |p: Point| within(p);
-    if d >= 0.0 {
-        erode(&contours, &inside, d, tol)
-    } else {
-        // Growing the pocket is eroding everything else.
-        let reversed: Vec<Contour> = contours.iter().map(Contour::reversed).collect();
-        let outside = |p: Point| !inside(p);
-        erode(&reversed, &outside, -d, tol)
-            .iter()
-            .map(Contour::reversed)
-            .collect()
-    }
+    Region::new(pocket).offset(d, tol)
 }
 
 /// The offset of one closed contour by `d`: inward for `d` > 0 (the contour's inside eroded),
@@ -56,38 +113,17 @@ pub fn offset_contour(contour: &Contour, d: f64, tol: &Tolerance) -> Vec<Contour
     } else {
         contour.reversed()
     };
-    let within = region_test(std::slice::from_ref(&ccw));
-    if d >= 0.0 {
-        let inside = |p: Point| within(p);
-        erode(std::slice::from_ref(&ccw), &inside, d, tol)
-    } else {
-        // Dilating the inside is eroding the outside: offset the reversed contour, then turn the
-        // loops so that they run counter-clockwise around the dilated shape.
-        let outside = |p: Point| !within(p);
-        erode(&[ccw.reversed()], &outside, -d, tol)
-            .iter()
-            .map(Contour::reversed)
-            .collect()
-    }
-}
-
-/// Point-in-region test for a region whose contours have it on their left (an outer boundary
-/// counter-clockwise, islands clockwise): the winding numbers add up to 1 inside. Each contour
-/// gets a strip index, so a test costs a few segments, not all of them.
-fn region_test(contours: &[Contour]) -> impl Fn(Point) -> bool + '_ {
-    let indexes: Vec<WindingIndex> = contours.iter().map(|c| WindingIndex::new(&c.segments)).collect();
-    move |p: Point| {
-        contours
-            .iter()
-            .zip(&indexes)
-            .map(|(c, i)| i.winding(&c.segments, p))
-            .sum::<i32>()
-            > 0
-    }
+    Region::from_contours(vec![ccw]).offset(d, tol)
 }
 
 /// The boundary of the region on the left of `contours` (where `inside` holds) eroded by `d`.
-fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tolerance) -> Vec<Contour> {
+fn erode(
+    contours: &[Contour],
+    profile: &Profile,
+    inside: &dyn Fn(Point) -> bool,
+    d: f64,
+    tol: &Tolerance,
+) -> Vec<Contour> {
     if !(d > 0.0 && d.is_finite()) {
         return contours.to_vec();
     }
@@ -100,7 +136,6 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
     }
     let mut nodes = Nodes::new(next_node);
     let pieces = split(&raw, &mut nodes, tol);
-    let profile = Profile::new(contours);
     let pieces: Vec<Piece> = pieces
         .into_iter()
         .map(|p| Piece {
@@ -109,7 +144,7 @@ fn erode(contours: &[Contour], inside: &dyn Fn(Point) -> bool, d: f64, tol: &Tol
             ..p
         })
         .collect();
-    let kept = prune(pieces, &profile, inside, d, tol);
+    let kept = prune(pieces, profile, inside, d, tol);
     let kept = remove_dangling(cancel_opposites(kept, tol));
     let (loops, _lost) = stitch(&kept);
     loops
