@@ -11,6 +11,7 @@ pub mod export;
 pub mod geom;
 pub mod import;
 pub mod offset;
+mod union_find;
 
 pub use import::{read_drawing, Drawing, ImportError, ImportOptions};
 

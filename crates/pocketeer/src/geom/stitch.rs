@@ -6,6 +6,7 @@
 //! piece, two loops that touch at one point stay two loops.
 
 use super::{Contour, Point, Segment, Vector};
+use crate::union_find::UnionFind;
 use std::collections::HashMap;
 
 /// A piece of boundary, with the material on its left, between two nodes.
@@ -100,27 +101,19 @@ fn turn_key(incoming: Vector, next: &Segment) -> (f64, f64) {
 pub fn cluster_points(points: &[Point], r: f64) -> Vec<usize> {
     let cell = |p: Point| ((p.x / r).floor() as i64, (p.y / r).floor() as i64);
     let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    let mut parent: Vec<usize> = (0..points.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut sets = UnionFind::new(points.len());
     for (k, &p) in points.iter().enumerate() {
         let (cx, cy) = cell(p);
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for &o in grid.get(&(cx + dx, cy + dy)).map(Vec::as_slice).unwrap_or(&[]) {
                     if points[o].distance(p) <= r {
-                        let (a, b) = (find(&mut parent, o), find(&mut parent, k));
-                        parent[a] = b;
+                        sets.union(o, k);
                     }
                 }
             }
         }
         grid.entry((cx, cy)).or_default().push(k);
     }
-    (0..points.len()).map(|k| find(&mut parent, k)).collect()
+    (0..points.len()).map(|k| sets.find(k)).collect()
 }

@@ -8,6 +8,7 @@
 use super::error::fmt_point;
 use super::Element;
 use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
+use crate::union_find::UnionFind;
 use std::collections::{HashMap, HashSet};
 
 /// A closed contour found by chaining.
@@ -350,22 +351,14 @@ impl Nodes {
         let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
         let mut next = vec![usize::MAX; 2 * n];
         let mut exact: HashMap<(u64, u64, usize), usize> = HashMap::new();
-        let mut parent: Vec<usize> = (0..2 * n).collect();
-        fn find(parent: &mut [usize], mut x: usize) -> usize {
-            while parent[x] != x {
-                parent[x] = parent[parent[x]];
-                x = parent[x];
-            }
-            x
-        }
+        let mut sets = UnionFind::new(2 * n);
         for k in 0..2 * n {
             if !alive[k / 2] {
                 continue;
             }
             // An end exactly where an earlier one is joins it and everything it joins.
             if let Some(&o) = exact.get(&(ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer)) {
-                let (a, b) = (find(&mut parent, o), find(&mut parent, k));
-                parent[a] = b;
+                sets.union(o, k);
                 continue;
             }
             exact.insert(
@@ -381,8 +374,7 @@ impl Nodes {
                         if elements[o / 2].layer == elements[k / 2].layer
                             && ends[o].distance(ends[k]) <= radius
                         {
-                            let (a, b) = (find(&mut parent, o), find(&mut parent, k));
-                            parent[a] = b;
+                            sets.union(o, k);
                         }
                         o = next[o];
                     }
@@ -399,7 +391,7 @@ impl Nodes {
             if !alive[k / 2] {
                 continue;
             }
-            let root = find(&mut parent, k);
+            let root = sets.find(k);
             let id = *index.entry(root).or_insert_with(|| {
                 sums.push((0.0, 0.0, 0));
                 sums.len() - 1

@@ -15,6 +15,7 @@ use crate::geom::{
     cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Point, Segment,
     Tolerance, WindingIndex,
 };
+use crate::union_find::UnionFind;
 use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
 
@@ -111,7 +112,7 @@ pub fn find_pockets(
 
     // Cuts on every segment where another contour meets it, and which contours meet.
     let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
-    let mut cluster: Vec<usize> = (0..contours.len()).collect();
+    let mut clusters = UnionFind::new(contours.len());
     let mut crossings: Vec<(usize, usize, Point)> = Vec::new();
     for (i, j) in index.pairs() {
         let (a, b) = (refs[i], refs[j]);
@@ -137,11 +138,9 @@ pub fn find_pockets(
             cuts.entry((a.contour, a.index)).or_default().extend(pa);
             cuts.entry((b.contour, b.index)).or_default().extend(pb);
         }
-        union(&mut cluster, a.contour, b.contour);
+        clusters.union(a.contour, b.contour);
     }
-    for c in 0..contours.len() {
-        find(&mut cluster, c);
-    }
+    let cluster: Vec<usize> = (0..contours.len()).map(|c| clusters.find(c)).collect();
 
     let crossing: HashSet<(usize, usize)> = crossings.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
     let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
@@ -212,21 +211,6 @@ pub fn find_pockets(
         levels,
         warnings,
     })
-}
-
-fn find(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    x
-}
-
-fn union(parent: &mut [usize], a: usize, b: usize) {
-    let (ra, rb) = (find(parent, a), find(parent, b));
-    if ra != rb {
-        parent[ra.max(rb)] = ra.min(rb);
-    }
 }
 
 /// Points spread evenly along a contour, for deciding which side of another contour it lies on.

@@ -2,6 +2,7 @@
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
+use crate::union_find::UnionFind;
 
 /// The original profile, indexed for distance queries.
 pub struct Profile {
@@ -86,21 +87,13 @@ fn runs(pieces: &[Piece]) -> Vec<usize> {
         ins[p.end] += 1;
         into[p.end] = i;
     }
-    let mut parent: Vec<usize> = (0..pieces.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut sets = UnionFind::new(pieces.len());
     for node in 0..nodes {
         if ins[node] == 1 && outs[node] == 1 {
-            let (a, b) = (find(&mut parent, into[node]), find(&mut parent, from[node]));
-            parent[a] = b;
+            sets.union(into[node], from[node]);
         }
     }
-    (0..pieces.len()).map(|i| find(&mut parent, i)).collect()
+    (0..pieces.len()).map(|i| sets.find(i)).collect()
 }
 
 /// Removes pairs of pieces that run along each other in opposite directions between the same

@@ -2,43 +2,10 @@
 //! a spatial index, so that afterwards no two pieces cross.
 
 use crate::geom::{intersect, Aabb, BoxIndex, Intersection, Line, Piece, Point, Segment, Tolerance};
+use crate::union_find::UnionFind;
 
-/// Union–find over node ids.
-pub struct Nodes {
-    parent: Vec<usize>,
-}
-
-impl Nodes {
-    /// `n` separate nodes.
-    pub fn new(n: usize) -> Nodes {
-        Nodes {
-            parent: (0..n).collect(),
-        }
-    }
-
-    /// A new node.
-    pub fn add(&mut self) -> usize {
-        self.parent.push(self.parent.len());
-        self.parent.len() - 1
-    }
-
-    /// The representative of `x`.
-    pub fn find(&mut self, mut x: usize) -> usize {
-        while self.parent[x] != x {
-            self.parent[x] = self.parent[self.parent[x]];
-            x = self.parent[x];
-        }
-        x
-    }
-
-    /// Makes `a` and `b` one node.
-    pub fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.parent[ra.max(rb)] = ra.min(rb);
-        }
-    }
-}
+/// Node ids, united where pieces meet.
+pub type Nodes = UnionFind;
 
 /// A cut: where on the piece (parameter), which node, and the point.
 type Cut = (f64, usize, Point);
