@@ -2,37 +2,12 @@
 //! same inputs, every level from the original shape, and prints a Markdown table of medians and
 //! ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick]`.
 
-use pocketeer_bench::cases;
-
-use cases::{Case, Ring};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
-use pocketeer::geom::{Arc, Contour, Line, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
+use pocketeer::geom::{Contour, Tolerance};
+use pocketeer_bench::cases::{self, Case};
+use pocketeer_bench::pocket;
 use std::time::{Duration, Instant};
-
-fn contour(ring: &Ring) -> Contour {
-    let n = ring.len();
-    Contour::new(
-        (0..n)
-            .map(|k| {
-                let (x0, y0, b) = ring[k];
-                let (x1, y1, _) = ring[(k + 1) % n];
-                let (a, e) = (Point::new(x0, y0), Point::new(x1, y1));
-                Arc::from_bulge(a, e, b)
-                    .map(Segment::Arc)
-                    .unwrap_or(Segment::Line(Line::new(a, e)))
-            })
-            .collect(),
-    )
-}
-
-fn pocket(case: &Case) -> Pocket {
-    Pocket {
-        boundary: contour(&case.rings[0]),
-        islands: case.rings[1..].iter().map(contour).collect(),
-    }
-}
 
 fn shape(case: &Case) -> Shape<f64> {
     let plines = case.rings.iter().map(|ring| {

@@ -5,30 +5,15 @@ use pocketeer_bench::cases;
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
-use pocketeer::geom::{Arc, Contour, Line, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
+use pocketeer::geom::{Contour, Tolerance};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1000);
     let arcs = args.get(2).is_some_and(|s| s == "arcs");
     let case = cases::smooth(n, arcs);
+    let pocket = pocketeer_bench::pocket(&case);
     let ring = &case.rings[0];
-    let m = ring.len();
-    let segs = (0..m)
-        .map(|k| {
-            let (x0, y0, b) = ring[k];
-            let (x1, y1, _) = ring[(k + 1) % m];
-            let (a, e) = (Point::new(x0, y0), Point::new(x1, y1));
-            Arc::from_bulge(a, e, b)
-                .map(Segment::Arc)
-                .unwrap_or(Segment::Line(Line::new(a, e)))
-        })
-        .collect();
-    let pocket = Pocket {
-        boundary: Contour::new(segs),
-        islands: vec![],
-    };
     let mut p = Polyline::new_closed();
     for &(x, y, b) in ring {
         p.add(x, y, b);

@@ -6,15 +6,7 @@ use pocketeer::offset::{offset_contour, offset_pocket};
 use std::f64::consts::{PI, TAU};
 
 fn polygon(pts: &[(f64, f64)]) -> Contour {
-    let n = pts.len();
-    Contour::new(
-        (0..n)
-            .map(|k| {
-                let (a, b) = (pts[k], pts[(k + 1) % n]);
-                Segment::Line(Line::new(Point::new(a.0, a.1), Point::new(b.0, b.1)))
-            })
-            .collect(),
-    )
+    Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
 }
 
 fn circle_cw(x: f64, y: f64, r: f64) -> Contour {

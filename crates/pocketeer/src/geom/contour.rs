@@ -1,6 +1,6 @@
 //! Closed contours of lines and arcs: area, orientation, point containment.
 
-use super::{Aabb, Point, Segment};
+use super::{Aabb, Line, Point, Segment};
 use std::f64::consts::PI;
 
 /// A closed chain of segments, each starting where the previous one ends and the last ending
@@ -24,6 +24,25 @@ impl Contour {
     /// A contour from segments already joined end to start.
     pub fn new(segments: Vec<Segment>) -> Contour {
         Contour { segments }
+    }
+
+    /// The closed polygon through `points`: a line from each to the next, and from the last back
+    /// to the first (repeated points are skipped).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Contour, Point};
+    /// let square = Contour::polygon(&[Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(2.0, 2.0), Point::new(0.0, 2.0)]);
+    /// assert_eq!(square.signed_area(), 4.0);
+    /// ```
+    pub fn polygon(points: &[Point]) -> Contour {
+        let n = points.len();
+        Contour::new(
+            (0..n)
+                .map(|k| (points[k], points[(k + 1) % n]))
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| Segment::Line(Line::new(a, b)))
+                .collect(),
+        )
     }
 
     /// Exact signed area: positive for counter-clockwise contours. Arcs count with their
@@ -223,7 +242,7 @@ impl WindingIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Arc, Line};
+    use crate::geom::Arc;
     use std::f64::consts::{PI, TAU};
 
     fn slot() -> Contour {

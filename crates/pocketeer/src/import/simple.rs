@@ -120,15 +120,7 @@ mod tests {
     use super::*;
 
     fn polygon(pts: &[(f64, f64)]) -> Contour {
-        let n = pts.len();
-        Contour::new(
-            (0..n)
-                .map(|k| {
-                    let (a, b) = (pts[k], pts[(k + 1) % n]);
-                    Segment::Line(Line::new(Point::new(a.0, a.1), Point::new(b.0, b.1)))
-                })
-                .collect(),
-        )
+        Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
     }
 
     #[test]
