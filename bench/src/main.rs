@@ -1,6 +1,6 @@
-//! Times pocketeer's offsets against cavalier_contours 0.9.0 (and Clipper2 where built) on the
-//! same inputs, every level from the original shape, and prints a Markdown table of medians and
-//! ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick]`.
+//! Times pocketeer's offsets against cavalier_contours 0.9.0 on the same inputs, and against
+//! Clipper2 (arcs flattened to 0.001 mm) on cases (a) and (c), every level from the original
+//! shape, and prints a Markdown table of medians and ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick]`.
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
@@ -8,6 +8,40 @@ use pocketeer::geom::{Contour, Tolerance};
 use pocketeer_bench::cases::{self, Case};
 use pocketeer_bench::pocket;
 use std::time::{Duration, Instant};
+
+/// Clipper2 on a 10 nm integer grid, so that rounding stays far below the flattening error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+struct TenNano;
+
+impl clipper2::PointScaler for TenNano {
+    const MULTIPLIER: f64 = 1e5;
+}
+
+/// The rings as polygons whose chords stray at most 0.001 mm from the arcs.
+fn flattened(case: &Case) -> clipper2::Paths<TenNano> {
+    let paths: Vec<clipper2::Path<TenNano>> = case
+        .rings
+        .iter()
+        .map(|ring| {
+            let mut pts: Vec<(f64, f64)> = Vec::new();
+            for s in &pocketeer_bench::contour(ring).segments {
+                let steps = match s {
+                    pocketeer::geom::Segment::Line(_) => 1,
+                    pocketeer::geom::Segment::Arc(a) => {
+                        let max_step = 2.0 * (1.0 - 0.001 / a.radius).clamp(-1.0, 1.0).acos();
+                        (a.sweep.abs() / max_step).ceil().max(1.0) as usize
+                    }
+                };
+                for k in 0..steps {
+                    let p = s.point_at(k as f64 / steps as f64);
+                    pts.push((p.x, p.y));
+                }
+            }
+            pts.into()
+        })
+        .collect();
+    paths.into()
+}
 
 fn shape(case: &Case) -> Shape<f64> {
     let plines = case.rings.iter().map(|ring| {
@@ -53,8 +87,10 @@ fn main() {
         list.push(cases::smooth(n, false));
         list.push(cases::smooth(n, true));
     }
-    println!("| case | levels | pocketeer ms | cavalier_contours ms | cavalier / pocketeer | area pocketeer | area cavalier |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| case | levels | pocketeer ms | cavalier_contours ms | cavalier / pocketeer | Clipper2 ms | Clipper2 / pocketeer | area pocketeer | area cavalier | area Clipper2 |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in &list {
         let reps = if case.name.contains("100000") { 3 } else { 7 };
         let p = pocket(case);
@@ -88,15 +124,49 @@ fn main() {
                 })
                 .sum::<f64>()
         });
+        // Clipper2 takes 96 s for the 10k-line case (one run): it runs once there and is left
+        // out of the 10k-arc (flattened to far more vertices) and 100k cases.
+        let big = case.name.contains("10000 lines");
+        let with_clipper = (case.name.starts_with("(a)") || case.name.starts_with("(c)"))
+            && !case.name.contains("100000")
+            && !case.name.contains("10000 arcs");
+        let (clip_ms, clip_ratio, clip_area) = if with_clipper {
+            let paths = flattened(case);
+            let (t, area) = time(if big { 1 } else { reps }, || {
+                case.distances
+                    .iter()
+                    .map(|&d| {
+                        clipper2::inflate(
+                            paths.clone(),
+                            -d,
+                            clipper2::JoinType::Round,
+                            clipper2::EndType::Polygon,
+                            2.0,
+                        )
+                        .signed_area()
+                    })
+                    .sum::<f64>()
+            });
+            (
+                ms(t),
+                format!("{:.2}", t.as_secs_f64() / ours.as_secs_f64()),
+                format!("{area:.3}"),
+            )
+        } else {
+            ("—".into(), "—".into(), "—".into())
+        };
         println!(
-            "| {} | {} | {} | {} | {:.2} | {:.3} | {:.3} |",
+            "| {} | {} | {} | {} | {:.2} | {} | {} | {:.3} | {:.3} | {} |",
             case.name,
             case.distances.len(),
             ms(ours),
             ms(theirs),
             theirs.as_secs_f64() / ours.as_secs_f64(),
+            clip_ms,
+            clip_ratio,
             our_area,
-            their_area
+            their_area,
+            clip_area
         );
     }
 }
