@@ -144,7 +144,15 @@ pub fn find_pockets(
 
     let crossing: HashSet<(usize, usize)> = crossings.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
     let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
-    let levels = nesting_levels(contours, &crossing, &locator, tol);
+    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    let contour_index = BoxIndex::new(&contour_boxes);
+    let levels = nesting_levels(
+        contours,
+        (&contour_boxes, &contour_index),
+        &crossing,
+        &locator,
+        tol,
+    );
     let mut reported = HashSet::new();
     for &(a, b, p) in &crossings {
         if reported.insert((cluster[a], a.min(b), a.max(b))) {
@@ -162,8 +170,6 @@ pub fn find_pockets(
         }
     }
 
-    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
-    let contour_index = BoxIndex::new(&contour_boxes);
     // Deepest level of the contours enclosing p (None outside all), read as "material removed
     // here" when even.
     let removed = |p: Point| {
@@ -248,13 +254,12 @@ fn samples(c: &Contour, count: usize) -> Vec<Point> {
 /// the same level and are merged.
 fn nesting_levels(
     contours: &[ChainedContour],
+    (boxes, index): (&[Aabb], &BoxIndex),
     crossing: &HashSet<(usize, usize)>,
     locator: &Locator,
     tol: &Tolerance,
 ) -> Vec<usize> {
     let n = contours.len();
-    let boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
-    let index = BoxIndex::new(&boxes);
     let areas: Vec<f64> = contours.iter().map(|c| c.contour.signed_area().abs()).collect();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]));
