@@ -2,6 +2,7 @@
 
 mod length;
 mod output;
+mod pocket;
 mod report;
 
 use clap::{Args, Parser, Subcommand};
@@ -12,7 +13,7 @@ use std::process::ExitCode;
 
 /// Contour-parallel pocket milling from DXF drawings.
 #[derive(Parser)]
-#[command(name = "pocketeer", version, about)]
+#[command(name = "pocketeer", version, about, args_override_self = true)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -24,6 +25,8 @@ enum Command {
     Inspect(InspectArgs),
     /// Offset every pocket of a drawing by a distance and write the loops as a DXF.
     Offset(OffsetArgs),
+    /// Clear every pocket of a drawing and write the G-code program.
+    Pocket(pocket::PocketArgs),
 }
 
 /// How to read a drawing (shared by every command that reads one).
@@ -131,12 +134,14 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
                 stroke: "black",
                 fill: "#dde6f0",
                 contours: &walls,
+                paths: &[],
             },
             svg::Layer {
                 name: "offset",
                 stroke: "#d03030",
                 fill: "none",
                 contours: &loops,
+                paths: &[],
             },
         ]);
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
@@ -168,6 +173,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Inspect(args) => inspect(args),
         Command::Offset(args) => offset(args),
+        Command::Pocket(args) => pocket::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

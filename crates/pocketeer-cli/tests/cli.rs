@@ -131,3 +131,95 @@ fn offset_lengths_take_units_and_a_failure_keeps_the_old_output() {
     assert_eq!(res.status.code(), Some(2));
     assert_eq!(std::fs::read(&out).unwrap(), before);
 }
+
+#[test]
+fn pocket_writes_a_program_and_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("bracket.nc");
+    let svg = dir.path().join("bracket.svg");
+    let res = run(&[
+        "pocket",
+        "examples/bracket.dxf",
+        "--tool-diameter",
+        "6",
+        "--stepover",
+        "40%",
+        "--depth",
+        "8",
+        "--post",
+        "linuxcnc",
+        "-o",
+        nc.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&res.stderr);
+    assert!(res.status.success(), "{stderr}");
+    for word in [
+        "1 pocket(s)",
+        "loop(s)",
+        "2 pass(es)",
+        "cutting",
+        "rapid",
+        "retract(s)",
+        "about",
+    ] {
+        assert!(stderr.contains(word), "{word} missing from: {stderr}");
+    }
+    let g = std::fs::read_to_string(&nc).unwrap();
+    assert!(g.starts_with("(pocketeer "));
+    for word in [
+        "G21\n",
+        "G91.1",
+        "M3 S12000\n",
+        "\nG2 ",
+        "\nG3 ",
+        "Z-4.0000",
+        "Z-8.0000",
+        "M5\nM2\n",
+    ] {
+        assert!(g.contains(word), "{word:?} missing");
+    }
+    assert!(!g.contains(" R"));
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+#[test]
+fn pocket_refusals_name_the_problem_and_keep_the_old_program() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("old.nc");
+    std::fs::write(&nc, "(a good old program)\n").unwrap();
+    let cases: [(&[&str], &str); 4] = [
+        (&["--tool-diameter", "60"], "fits in none"),
+        (
+            &["--tool-diameter", "6", "--stepover", "7"],
+            "less than the tool diameter",
+        ),
+        (
+            &["--tool-diameter", "0.25in", "--stepover", "0", "--depth", "2"],
+            "stepover must be positive",
+        ),
+        (
+            &["--tool-diameter", "6", "--depth", "-1"],
+            "depth must be positive",
+        ),
+    ];
+    for (flags, message) in cases {
+        let mut args = vec![
+            "pocket",
+            "examples/bracket.dxf",
+            "--stepover",
+            "2",
+            "--depth",
+            "2",
+        ];
+        args.extend_from_slice(flags);
+        args.extend_from_slice(&["-o", nc.to_str().unwrap()]);
+        let res = run(&args);
+        let stderr = String::from_utf8_lossy(&res.stderr);
+        assert_eq!(res.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert_eq!(std::fs::read_to_string(&nc).unwrap(), "(a good old program)\n");
+    }
+}

@@ -7,10 +7,15 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod clear;
 pub mod export;
 pub mod geom;
 pub mod import;
+pub mod job;
+pub mod link;
 pub mod offset;
+pub mod post;
+pub mod toolpath;
 mod union_find;
 
 pub use import::{read_drawing, Drawing, ImportError, ImportOptions};

@@ -13,6 +13,8 @@ pub struct Layer<'a> {
     pub fill: &'a str,
     /// The contours.
     pub contours: &'a [Contour],
+    /// Open paths.
+    pub paths: &'a [Vec<Segment>],
 }
 
 /// The path data of one contour.
@@ -24,11 +26,20 @@ pub struct Layer<'a> {
 /// assert!(path_data(&disc).starts_with("M1 0 A1 1 0 0 1 -1 0"));
 /// ```
 pub fn path_data(c: &Contour) -> String {
+    let mut d = open_path_data(&c.segments);
+    if !d.is_empty() {
+        d.push_str(" Z");
+    }
+    d
+}
+
+/// The path data of segments joined end to start, not closed.
+pub fn open_path_data(segments: &[Segment]) -> String {
     let mut d = String::new();
-    let Some(first) = c.segments.first() else { return d };
+    let Some(first) = segments.first() else { return d };
     let p = first.start();
     let _ = write!(d, "M{} {}", num(p.x), num(p.y));
-    for s in &c.segments {
+    for s in segments {
         match s {
             Segment::Line(l) => {
                 let _ = write!(d, " L{} {}", num(l.end.x), num(l.end.y));
@@ -51,7 +62,6 @@ pub fn path_data(c: &Contour) -> String {
             }
         }
     }
-    d.push_str(" Z");
     d
 }
 
@@ -69,8 +79,13 @@ fn num(x: f64) -> String {
 pub fn svg_document(layers: &[Layer]) -> String {
     let extent = layers
         .iter()
-        .flat_map(|l| l.contours.iter())
-        .fold(Aabb::EMPTY, |b, c| b.union(&c.bbox()));
+        .flat_map(|l| {
+            l.contours
+                .iter()
+                .map(Contour::bbox)
+                .chain(l.paths.iter().flatten().map(Segment::bbox))
+        })
+        .fold(Aabb::EMPTY, |b, c| b.union(&c));
     let extent = if extent.is_empty() {
         Aabb::from_points(Default::default(), Default::default())
     } else {
@@ -103,7 +118,8 @@ pub fn svg_document(layers: &[Layer]) -> String {
             escape(l.fill)
         );
         // One path per layer, so that the even-odd fill leaves islands open.
-        let d: Vec<String> = l.contours.iter().map(path_data).collect();
+        let mut d: Vec<String> = l.contours.iter().map(path_data).collect();
+        d.extend(l.paths.iter().map(|p| open_path_data(p)));
         let _ = writeln!(s, r#"<path d="{}"/>"#, d.join(" "));
         let _ = writeln!(s, "</g>");
     }
@@ -115,4 +131,35 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('"', "&quot;")
+}
+
+/// The moves of `path` seen from above: feed moves and rapids, each as runs of segments.
+pub fn toolpath_segments(path: &crate::toolpath::Toolpath) -> (Vec<Vec<Segment>>, Vec<Vec<Segment>>) {
+    use crate::geom::{Arc, Line};
+    use crate::toolpath::Move;
+    let (mut feeds, mut rapids): (Vec<Vec<Segment>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
+    let mut at = path.start;
+    let mut last_rapid: Option<bool> = None;
+    for m in &path.moves {
+        let (a, b) = (at.xy(), m.to().xy());
+        let seg = match *m {
+            Move::Arc { center, sweep, .. } => {
+                let v = a - center;
+                Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
+            }
+            _ => Segment::Line(Line::new(a, b)),
+        };
+        at = m.to();
+        if seg.length() <= 0.0 {
+            continue;
+        }
+        let rapid = matches!(m, Move::Rapid { .. });
+        let runs = if rapid { &mut rapids } else { &mut feeds };
+        match runs.last_mut() {
+            Some(run) if last_rapid == Some(rapid) => run.push(seg),
+            _ => runs.push(vec![seg]),
+        }
+        last_rapid = Some(rapid);
+    }
+    (feeds, rapids)
 }

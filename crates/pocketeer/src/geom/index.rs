@@ -1,7 +1,7 @@
 //! A spatial index over bounding boxes (an R*-tree from the `rstar` crate), for finding the
 //! pairs of elements that may touch without testing every pair.
 
-use super::{point_distance, Aabb, Point, Segment};
+use super::{point_distance, segment_distance, Aabb, Point, Segment};
 use rstar::{primitives::GeomWithData, primitives::Rectangle, PointDistance, RTree, RTreeObject, AABB};
 
 type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;
@@ -116,6 +116,28 @@ impl SegmentIndex {
                 .tree
                 .locate_within_distance([p.x, p.y], r * r)
                 .any(|f| point_distance(&f.0, p) < r)
+    }
+
+    /// True when some segment comes nearer to the segment `s` than `r` (`eps`: the geometric
+    /// epsilon used to detect touching).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
+    /// let p = Point::new;
+    /// let index = SegmentIndex::new(&[Segment::Line(Line::new(p(0.0, 0.0), p(10.0, 0.0)))]);
+    /// let probe = Segment::Line(Line::new(p(5.0, 2.0), p(5.0, 8.0)));
+    /// assert!(index.segment_within(&probe, 2.5, 1e-12));
+    /// assert!(!index.segment_within(&probe, 1.5, 1e-12));
+    /// ```
+    pub fn segment_within(&self, s: &Segment, r: f64, eps: f64) -> bool {
+        if r.is_nan() || r <= 0.0 {
+            return false;
+        }
+        let b = s.bbox();
+        let query = AABB::from_corners([b.min.x - r, b.min.y - r], [b.max.x + r, b.max.y + r]);
+        self.tree
+            .locate_in_envelope_intersecting(&query)
+            .any(|f| segment_distance(&f.0, s, eps).0 < r)
     }
 
     /// Distance from `p` to the nearest segment (infinite when there is none).

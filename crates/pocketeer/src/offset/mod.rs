@@ -63,6 +63,17 @@ impl Region {
             > 0
     }
 
+    /// Distance from `p` to the nearest wall or island.
+    pub fn distance(&self, p: Point) -> f64 {
+        self.profile.distance(p)
+    }
+
+    /// True when the segment `s` comes nearer than `r` to a wall or an island: a tool centre
+    /// moving along `s` stays at least `r` from them exactly when this is false.
+    pub fn segment_nearer_than(&self, s: &crate::geom::Segment, r: f64, tol: &Tolerance) -> bool {
+        self.profile.segment_nearer_than(s, r, tol.eps)
+    }
+
     /// The region eroded by `d` > 0 (grown by |d| for `d` < 0): loops counter-clockwise around
     /// material, clockwise around holes.
     pub fn offset(&self, d: f64, tol: &Tolerance) -> Vec<Contour> {
@@ -95,8 +106,6 @@ impl Region {
 /// assert_eq!(loops.len(), 2);
 /// assert!((area - (90.0 * 50.0 - std::f64::consts::PI * 15.0 * 15.0)).abs() < 1e-9);
 /// ```
-///
-/// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink.
 ///
 /// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink. To offset
 /// one pocket by many distances, prepare it once with [`Region`].

@@ -22,6 +22,16 @@ impl Profile {
     pub fn nearer_than(&self, p: Point, r: f64) -> bool {
         self.index.any_within(p, r)
     }
+
+    /// Distance from `p` to the profile.
+    pub fn distance(&self, p: Point) -> f64 {
+        self.index.distance(p)
+    }
+
+    /// True when the profile comes nearer to the segment `s` than `r`.
+    pub fn segment_nearer_than(&self, s: &Segment, r: f64, eps: f64) -> bool {
+        self.index.segment_within(s, r, eps)
+    }
 }
 
 /// The pieces that belong to the offset at distance `d`: not nearer than d to the profile (less

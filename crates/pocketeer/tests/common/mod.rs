@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+pub mod replay;
+
 use std::fmt::Write;
 
 /// One entity: its type and its groups after the `0` group.

@@ -1,0 +1,271 @@
+//! Clearing a pocket: the levels of contour-parallel loops, each taken from the original
+//! region, arranged in a tree, plus clean-up paths wherever the levels alone would leave
+//! material (`../shared/DESIGN.md`, "no leftover").
+//!
+//! Why the levels and the clean-up paths leave nothing: a point p of the region whose distance
+//! to the walls is t, with d_k ≤ t < d_(k+1), lies t − d_k from the loop at level k along the
+//! straight line to its nearest wall point. When no gap d_(k+1) − d_k exceeds the tool radius,
+//! every point the tool centre may reach is within the radius of a loop, and the loop at d = r
+//! sweeps the rest of what the tool can reach. Wider gaps (stepovers above the radius) are
+//! filled where needed by pieces of the loop half way between, see [`residue`].
+
+mod levels;
+mod residue;
+mod tree;
+
+use crate::geom::{Aabb, Contour, Segment, Tolerance};
+use crate::import::Pocket;
+use crate::offset::Region;
+use thiserror::Error;
+
+/// How a pocket is cleared.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClearParams {
+    /// Radius of the tool, mm.
+    pub tool_radius: f64,
+    /// Distance between neighbouring levels, mm (at most the tool diameter).
+    pub stepover: f64,
+    /// Material left on walls and islands by the roughing levels and removed by a finishing
+    /// loop at the tool radius, mm (0: no finishing loop).
+    pub allowance: f64,
+}
+
+/// Why a pocket cannot be planned.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ClearError {
+    /// A parameter out of range.
+    #[error("{0}")]
+    BadParameter(String),
+    /// Too many levels would be needed.
+    #[error("{levels} levels would be needed (stepover {stepover} mm over a pocket {depth:.3} mm deep); the limit is {limit}")]
+    TooManyLevels {
+        /// Levels needed.
+        levels: f64,
+        /// The stepover.
+        stepover: f64,
+        /// Upper bound of the distance from the walls to the pocket's middle.
+        depth: f64,
+        /// The largest number allowed.
+        limit: usize,
+    },
+}
+
+/// The most levels one pocket may have: a million loops is hours of machining already.
+pub const MAX_LEVELS: usize = 100_000;
+
+/// An open or closed path of exact segments that the tool centre follows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Path {
+    /// The segments, joined end to start.
+    pub segments: Vec<Segment>,
+    /// True when the last segment ends where the first starts.
+    pub closed: bool,
+}
+
+/// One connected part of one level: an outer loop and the loops around the islands inside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Node {
+    /// Index of the level: 0 is the one nearest the walls.
+    pub level: usize,
+    /// Distance of the loops from the walls and islands, mm.
+    pub distance: f64,
+    /// The outer loop, counter-clockwise (the part on its left).
+    pub outer: Contour,
+    /// Loops around islands inside the outer loop, clockwise.
+    pub holes: Vec<Contour>,
+    /// Parts of the next level inside this one.
+    pub children: Vec<usize>,
+    /// The part of the previous level this one lies in.
+    pub parent: Option<usize>,
+    /// Paths between this part and its children that must also be cut to leave nothing
+    /// (empty whenever the stepover is at most the tool radius).
+    pub cleanups: Vec<Path>,
+}
+
+/// The tree of loops that clears one pocket.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ClearPlan {
+    /// All parts of all levels.
+    pub nodes: Vec<Node>,
+    /// The parts of level 0.
+    pub roots: Vec<usize>,
+    /// The level distances used, mm.
+    pub distances: Vec<f64>,
+}
+
+impl ClearPlan {
+    /// Number of loops to cut, clean-up paths included.
+    pub fn loop_count(&self) -> usize {
+        self.nodes
+            .iter()
+            .map(|n| 1 + n.holes.len() + n.cleanups.len())
+            .sum()
+    }
+}
+
+/// Plans the clearing of `pocket`: levels at the tool radius (a finishing loop when there is an
+/// allowance), then at r + allowance + k·stepover until nothing is left, each from the
+/// original region, arranged in a tree, with clean-up paths where the stepover exceeds the
+/// tool radius. An empty plan means the tool fits nowhere in the pocket.
+///
+/// ```
+/// use pocketeer::clear::{plan_pocket, ClearParams};
+/// use pocketeer::geom::{Contour, Point, Tolerance};
+/// use pocketeer::import::Pocket;
+/// let p = Point::new;
+/// let square = Contour::polygon(&[p(0.0, 0.0), p(40.0, 0.0), p(40.0, 40.0), p(0.0, 40.0)]);
+/// let pocket = Pocket { boundary: square, islands: vec![] };
+/// let params = ClearParams { tool_radius: 3.0, stepover: 2.4, allowance: 0.0 };
+/// let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+/// // Levels at 3, 5.4, ..., 19.8 mm: the square's half width is 20.
+/// assert_eq!(plan.distances.len(), 8);
+/// assert_eq!(plan.roots.len(), 1);
+/// ```
+pub fn plan_pocket(pocket: &Pocket, params: &ClearParams, tol: &Tolerance) -> Result<ClearPlan, ClearError> {
+    plan_region(&Region::new(pocket), &pocket.boundary.bbox(), params, tol)
+}
+
+/// [`plan_pocket`] for a pocket already prepared as a [`Region`], `bbox` its boundary's box.
+pub fn plan_region(
+    region: &Region,
+    bbox: &Aabb,
+    params: &ClearParams,
+    tol: &Tolerance,
+) -> Result<ClearPlan, ClearError> {
+    check_params(params)?;
+    // No point of the pocket is farther from its boundary than half its smaller extent.
+    let depth = 0.5 * bbox.width().min(bbox.height());
+    let distances = levels::level_distances(params, depth)?;
+    let loops = levels::offsets_until_empty(region, &distances, tol);
+    let distances = distances[..loops.len()].to_vec();
+    let mut plan = tree::build(loops, &distances);
+    residue::add_cleanups(&mut plan, region, params, tol);
+    Ok(plan)
+}
+
+fn check_params(p: &ClearParams) -> Result<(), ClearError> {
+    let bad = |m: String| Err(ClearError::BadParameter(m));
+    if !(p.tool_radius.is_finite() && p.tool_radius > 0.0) {
+        return bad(format!(
+            "the tool diameter must be positive (got {} mm)",
+            2.0 * p.tool_radius
+        ));
+    }
+    if !(p.stepover.is_finite() && p.stepover > 0.0) {
+        return bad(format!("the stepover must be positive (got {} mm)", p.stepover));
+    }
+    if p.stepover >= 2.0 * p.tool_radius {
+        return bad(format!(
+            "the stepover ({} mm) must be less than the tool diameter ({} mm)",
+            p.stepover,
+            2.0 * p.tool_radius
+        ));
+    }
+    if !(p.allowance.is_finite() && p.allowance >= 0.0) {
+        return bad(format!(
+            "the allowance must be zero or positive (got {} mm)",
+            p.allowance
+        ));
+    }
+    if p.allowance >= 2.0 * p.tool_radius {
+        return bad(format!(
+            "the allowance ({} mm) must be less than the tool diameter ({} mm)",
+            p.allowance,
+            2.0 * p.tool_radius
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Arc, Point};
+
+    fn rect(w: f64, h: f64) -> Contour {
+        let p = Point::new;
+        Contour::polygon(&[p(0.0, 0.0), p(w, 0.0), p(w, h), p(0.0, h)])
+    }
+
+    #[test]
+    fn parameters_out_of_range_are_refused() {
+        let pocket = Pocket {
+            boundary: rect(10.0, 10.0),
+            islands: vec![],
+        };
+        let tol = Tolerance::default();
+        for (r, s, a) in [
+            (0.0, 1.0, 0.0),
+            (1.0, 0.0, 0.0),
+            (1.0, 2.0, 0.0),
+            (1.0, 1.0, -0.1),
+            (1.0, f64::NAN, 0.0),
+        ] {
+            let params = ClearParams {
+                tool_radius: r,
+                stepover: s,
+                allowance: a,
+            };
+            assert!(plan_pocket(&pocket, &params, &tol).is_err(), "{r} {s} {a}");
+        }
+    }
+
+    #[test]
+    fn a_tool_too_big_gives_an_empty_plan() {
+        let pocket = Pocket {
+            boundary: rect(10.0, 10.0),
+            islands: vec![],
+        };
+        let params = ClearParams {
+            tool_radius: 5.5,
+            stepover: 1.0,
+            allowance: 0.0,
+        };
+        let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+        assert!(plan.nodes.is_empty());
+    }
+
+    #[test]
+    fn a_bar_island_splits_the_inner_levels_into_two_branches() {
+        // 60 x 30 pocket, a 40 x 4 bar across the middle leaving 13 mm each side.
+        let p = Point::new;
+        let bar = Contour::polygon(&[p(10.0, 13.0), p(10.0, 17.0), p(50.0, 17.0), p(50.0, 13.0)]);
+        let pocket = Pocket {
+            boundary: rect(60.0, 30.0),
+            islands: vec![bar],
+        };
+        let params = ClearParams {
+            tool_radius: 2.0,
+            stepover: 1.5,
+            allowance: 0.0,
+        };
+        let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+        assert_eq!(plan.roots.len(), 1);
+        let root = &plan.nodes[plan.roots[0]];
+        assert_eq!(root.holes.len(), 1);
+        // Some level has two parts with the same parent.
+        assert!(plan.nodes.iter().any(|n| n.children.len() == 2));
+        for (i, n) in plan.nodes.iter().enumerate() {
+            for &c in &n.children {
+                assert_eq!(plan.nodes[c].parent, Some(i));
+                assert_eq!(plan.nodes[c].level, n.level + 1);
+            }
+        }
+    }
+
+    #[test]
+    fn allowance_adds_a_finishing_level_at_the_tool_radius() {
+        let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 20.0))]);
+        let pocket = Pocket {
+            boundary: disc,
+            islands: vec![],
+        };
+        let params = ClearParams {
+            tool_radius: 3.0,
+            stepover: 2.0,
+            allowance: 0.5,
+        };
+        let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+        assert_eq!(&plan.distances[..3], &[3.0, 3.5, 5.5]);
+    }
+}

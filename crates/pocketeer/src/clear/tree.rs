@@ -1,0 +1,94 @@
+//! Arranging the loops of the levels into a tree: each level splits into parts (an outer loop
+//! with the loops around islands inside it), and each part lies inside exactly one part of the
+//! level before, because eroding further only removes points.
+
+use super::{ClearPlan, Node};
+use crate::geom::{Aabb, Contour, Point};
+
+/// The parts of each level, linked to the part of the previous level they lie in.
+pub fn build(levels: Vec<Vec<Contour>>, distances: &[f64]) -> ClearPlan {
+    let mut plan = ClearPlan {
+        distances: distances.to_vec(),
+        ..ClearPlan::default()
+    };
+    let mut previous: Vec<usize> = Vec::new();
+    for (level, loops) in levels.into_iter().enumerate() {
+        let parts = parts(loops);
+        let mut current = Vec::with_capacity(parts.len());
+        for (outer, holes) in parts {
+            let id = plan.nodes.len();
+            let parent = if level == 0 {
+                plan.roots.push(id);
+                None
+            } else {
+                Some(enclosing(&plan.nodes, &previous, outer.segments[0].start()))
+            };
+            if let Some(p) = parent {
+                plan.nodes[p].children.push(id);
+            }
+            plan.nodes.push(Node {
+                level,
+                distance: distances[level],
+                outer,
+                holes,
+                children: Vec::new(),
+                parent,
+                cleanups: Vec::new(),
+            });
+            current.push(id);
+        }
+        previous = current;
+    }
+    plan
+}
+
+/// The index among `candidates` of the part whose outer loop encloses `p` (the nearest by box
+/// when rounding puts `p` on no outer loop's inside).
+pub fn enclosing(nodes: &[Node], candidates: &[usize], p: Point) -> usize {
+    if candidates.len() == 1 {
+        return candidates[0];
+    }
+    let inside = candidates
+        .iter()
+        .copied()
+        .filter(|&c| nodes[c].outer.bbox().contains(p))
+        .find(|&c| nodes[c].outer.contains(p));
+    inside.unwrap_or_else(|| {
+        candidates
+            .iter()
+            .copied()
+            .min_by(|&a, &b| {
+                box_gap(&nodes[a].outer.bbox(), p).total_cmp(&box_gap(&nodes[b].outer.bbox(), p))
+            })
+            .unwrap_or(0)
+    })
+}
+
+fn box_gap(b: &Aabb, p: Point) -> f64 {
+    let dx = (b.min.x - p.x).max(p.x - b.max.x).max(0.0);
+    let dy = (b.min.y - p.y).max(p.y - b.max.y).max(0.0);
+    dx.hypot(dy)
+}
+
+/// Groups loops into parts: each clockwise loop goes with the counter-clockwise loop around it.
+/// Outer loops of one level never nest (the region of a pocket has no material inside its
+/// islands), so the enclosing outer loop is unique.
+fn parts(loops: Vec<Contour>) -> Vec<(Contour, Vec<Contour>)> {
+    let (outers, holes): (Vec<Contour>, Vec<Contour>) =
+        loops.into_iter().partition(|l| l.signed_area() > 0.0);
+    let boxes: Vec<Aabb> = outers.iter().map(Contour::bbox).collect();
+    let mut parts: Vec<(Contour, Vec<Contour>)> = outers.into_iter().map(|o| (o, Vec::new())).collect();
+    for h in holes {
+        let p = h.segments[0].start();
+        let owner = if parts.len() == 1 {
+            Some(0)
+        } else {
+            (0..parts.len()).find(|&i| boxes[i].contains(p) && parts[i].0.contains(p))
+        };
+        // A hole outside every outer loop cannot come from an offset; drop it rather than cut it.
+        if let Some(i) = owner {
+            parts[i].1.push(h);
+        }
+    }
+    parts
+}

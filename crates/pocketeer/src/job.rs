@@ -1,0 +1,128 @@
+//! The whole pocketing job on a drawing's pockets: plan every pocket, link them into one tool
+//! path.
+
+use crate::clear::{plan_region, ClearError, ClearParams, ClearPlan};
+use crate::geom::Tolerance;
+use crate::import::Pocket;
+use crate::link::{link, LinkParams, Linked};
+use crate::offset::Region;
+use thiserror::Error;
+
+/// Why a job cannot be planned.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum JobError {
+    /// A clearing parameter is out of range, or a pocket would need too many levels.
+    #[error(transparent)]
+    Clear(#[from] ClearError),
+    /// A linking parameter is out of range.
+    #[error("{0}")]
+    BadParameter(String),
+    /// The tool fits in no pocket.
+    #[error("a {diameter} mm tool fits in none of the {pockets} pocket(s): the widest place is {widest:.3} mm across")]
+    ToolFitsNowhere {
+        /// Tool diameter, mm.
+        diameter: f64,
+        /// Number of pockets.
+        pockets: usize,
+        /// Roughly the widest place found (twice the largest distance from a wall), mm.
+        widest: f64,
+    },
+}
+
+/// A planned and linked job.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Job {
+    /// The clearing plan of each pocket (empty where the tool fits nowhere).
+    pub plans: Vec<ClearPlan>,
+    /// The tool path and remarks.
+    pub linked: Linked,
+}
+
+/// Plans and links `pockets`.
+pub fn pocket_job(
+    pockets: &[Pocket],
+    clear: &ClearParams,
+    link_params: &LinkParams,
+    tol: &Tolerance,
+) -> Result<Job, JobError> {
+    check_link(link_params)?;
+    let regions: Vec<Region> = pockets.iter().map(Region::new).collect();
+    let mut plans = Vec::with_capacity(pockets.len());
+    for (p, r) in pockets.iter().zip(&regions) {
+        plans.push(plan_region(r, &p.boundary.bbox(), clear, tol)?);
+    }
+    if !pockets.is_empty() && plans.iter().all(|p| p.nodes.is_empty()) {
+        return Err(JobError::ToolFitsNowhere {
+            diameter: 2.0 * clear.tool_radius,
+            pockets: pockets.len(),
+            widest: 2.0 * widest(&regions, pockets),
+        });
+    }
+    let jobs: Vec<(&Region, &ClearPlan)> = regions
+        .iter()
+        .zip(&plans)
+        .filter(|(_, p)| !p.nodes.is_empty())
+        .collect();
+    let mut linked = link(&jobs, link_params, tol);
+    for (i, p) in plans.iter().enumerate() {
+        if p.nodes.is_empty() {
+            linked.warnings.push(format!(
+                "pocket {} (area {:.3} mm², near {}) is too narrow for the tool: not cut",
+                i + 1,
+                pockets[i].area(),
+                crate::import::error::fmt_point(pockets[i].boundary.segments[0].start())
+            ));
+        }
+    }
+    Ok(Job { plans, linked })
+}
+
+/// The largest distance from the walls found among points sampled on a grid over each pocket.
+fn widest(regions: &[Region], pockets: &[Pocket]) -> f64 {
+    let mut best: f64 = 0.0;
+    for (r, p) in regions.iter().zip(pockets) {
+        let b = p.boundary.bbox();
+        let n = 64;
+        for i in 0..=n {
+            for j in 0..=n {
+                let q = crate::geom::Point::new(
+                    b.min.x + b.width() * i as f64 / n as f64,
+                    b.min.y + b.height() * j as f64 / n as f64,
+                );
+                if r.contains(q) {
+                    best = best.max(r.distance(q));
+                }
+            }
+        }
+    }
+    best
+}
+
+fn check_link(p: &LinkParams) -> Result<(), JobError> {
+    let bad = |m: String| Err(JobError::BadParameter(m));
+    if !(p.depth.is_finite() && p.depth > 0.0) {
+        return bad(format!("the depth must be positive (got {} mm)", p.depth));
+    }
+    if !(p.step_down.is_finite() && p.step_down > 0.0) {
+        return bad(format!("the step-down must be positive (got {} mm)", p.step_down));
+    }
+    if p.depth / p.step_down > 10_000.0 {
+        return bad(format!(
+            "{} mm in steps of {} mm would take more than 10000 passes",
+            p.depth, p.step_down
+        ));
+    }
+    if !(p.safe_z.is_finite() && p.safe_z > 0.0) {
+        return bad(format!(
+            "the safe height must be above the stock (got {} mm)",
+            p.safe_z
+        ));
+    }
+    if !(p.ramp_angle > 0.0 && p.ramp_angle < std::f64::consts::FRAC_PI_2) {
+        return bad(format!(
+            "the ramp angle must be between 0 and 90 degrees (got {})",
+            p.ramp_angle.to_degrees()
+        ));
+    }
+    Ok(())
+}

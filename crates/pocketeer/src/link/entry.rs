@@ -1,0 +1,147 @@
+//! Getting the tool down into the stock: a helix where one fits, else a ramp along the first
+//! path, else (with a warning) a straight plunge.
+
+use super::walk::{emit, length};
+use crate::geom::{Point, Segment, Vector};
+use crate::offset::Region;
+use crate::toolpath::{Feed, Point3, Toolpath};
+use std::f64::consts::TAU;
+
+/// A helix: the circle the tool centre follows down.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Helix {
+    /// Centre.
+    pub center: Point,
+    /// Radius.
+    pub radius: f64,
+}
+
+/// Looks for a helix inside the part that is cut first: its circle at least `tool_radius` from
+/// every wall (no gouge), its centre at least `part_distance` from them and inside `outer` (so
+/// it lies in that part), as large as `preferred` if possible and never smaller than
+/// `smallest`, then nearest to `target`. `samples` are points of the part's paths with their
+/// normals into the part.
+#[allow(clippy::too_many_arguments)]
+pub fn find_helix(
+    region: &Region,
+    outer: &crate::geom::Contour,
+    samples: &[(Point, Vector)],
+    part_distance: f64,
+    tool_radius: f64,
+    preferred: f64,
+    smallest: f64,
+    target: Point,
+) -> Option<Helix> {
+    // Pushed along the normal by these amounts, samples reach the middle of the part, small
+    // or large; the middle of its box is a candidate too.
+    let b = outer.bbox();
+    let size = b.width().min(b.height());
+    let pushes = [0.02 * size, 0.1 * size, 0.25 * size, 0.4 * size]
+        .into_iter()
+        .chain([0.25, 0.5, 1.0, 2.0, 4.0].map(|f| f * tool_radius));
+    let candidates = samples
+        .iter()
+        .flat_map(|&(p, n)| pushes.clone().map(move |u| p + n * u))
+        .chain(std::iter::once(b.min.midpoint(b.max)));
+    let mut best: Option<(Helix, f64)> = None;
+    {
+        for c in candidates {
+            let clearance = region.distance(c);
+            if clearance < part_distance || !outer.contains(c) || !region.contains(c) {
+                continue;
+            }
+            // A little less than the room there, for rounding.
+            let radius = (clearance - tool_radius) * (1.0 - 1e-6);
+            let radius = radius.min(preferred);
+            if radius < smallest {
+                continue;
+            }
+            // The largest radius first, then the shortest way to the target.
+            let score = c.distance(target) - 1e3 * radius;
+            if best.is_none_or(|(_, s)| score < s) {
+                best = Some((Helix { center: c, radius }, score));
+            }
+        }
+    }
+    best.map(|(h, _)| h)
+}
+
+/// Points along `segments` every `step` or so, with the normal to their left.
+pub fn samples(segments: &[Segment], step: f64) -> Vec<(Point, Vector)> {
+    let mut out = Vec::new();
+    for s in segments {
+        let n = ((s.length() / step).ceil() as usize).clamp(1, 64);
+        for j in 0..n {
+            let t = (j as f64 + 0.5) / n as f64;
+            out.push((s.point_at(t), s.tangent_at(t).perp()));
+        }
+    }
+    out
+}
+
+/// Goes down along `helix` from `z_top` to `z` at no more than `angle` (radians) from the
+/// horizontal, turns once more at `z`, and ends on the circle at the point nearest to
+/// `target`. The tool is above the circle's start at `z_top` when this begins; returns that
+/// start point.
+pub fn helix_start(helix: &Helix, z_top: f64, z: f64, angle: f64, ccw: bool, target: Point) -> (Point, f64) {
+    let drop_per_turn = TAU * helix.radius * angle.tan();
+    let descend = TAU * ((z_top - z) / drop_per_turn).max(0.0);
+    let total = descend + TAU;
+    let sign = if ccw { 1.0 } else { -1.0 };
+    let end_angle = (target - helix.center).angle();
+    let start_angle = end_angle - sign * total;
+    (
+        helix.center + Vector::from_angle(start_angle) * helix.radius,
+        sign * total,
+    )
+}
+
+/// Emits the helix moves (see [`helix_start`]) from its start, already at `z_top`.
+pub fn helix_moves(path: &mut Toolpath, helix: &Helix, z_top: f64, z: f64, sweep: f64) {
+    let start = path.position().xy();
+    let start_angle = (start - helix.center).angle();
+    let descend = sweep - sweep.signum() * TAU;
+    // Half turns at most per move; Z falls linearly with the angle.
+    let pieces = ((descend.abs() / (0.5 * TAU)).ceil() as usize).max(1);
+    let mut angle = start_angle;
+    for k in 1..=pieces {
+        let a = start_angle + descend * k as f64 / pieces as f64;
+        let zk = z_top + (z - z_top) * k as f64 / pieces as f64;
+        let to = helix.center + Vector::from_angle(a) * helix.radius;
+        path.arc_to(Point3::at(to, zk), helix.center, a - angle, Feed::Plunge);
+        angle = a;
+    }
+    // One flat turn at depth, in two halves, so the floor under the helix is clean.
+    for k in 1..=2 {
+        let a = angle + 0.5 * sweep.signum() * TAU;
+        let to = if k == 2 {
+            helix.center + Vector::from_angle(start_angle + sweep) * helix.radius
+        } else {
+            helix.center + Vector::from_angle(a) * helix.radius
+        };
+        path.arc_to(Point3::at(to, z), helix.center, a - angle, Feed::Cut);
+        angle = a;
+    }
+}
+
+/// Shortest walk a ramp may use: on less the tool would go down nearly vertically.
+pub fn shortest_ramp(tool_radius: f64) -> f64 {
+    0.5 * tool_radius
+}
+
+/// Ramps down from `z_top` to `z` along `walk` (a closed walk, ending where it starts), as
+/// many laps as the angle needs, so that the tool ends at the walk's start at depth `z`.
+pub fn ramp(path: &mut Toolpath, walk: &[Segment], z_top: f64, z: f64, angle: f64) {
+    let lap = length(walk);
+    let needed = (z_top - z) / angle.tan();
+    let laps = (needed / lap).ceil().max(1.0) as usize;
+    let total = lap * laps as f64;
+    let mut done = 0.0;
+    for _ in 0..laps {
+        for s in walk {
+            done += s.length();
+            let zs = z_top + (z - z_top) * (done / total).min(1.0);
+            emit(path, s, zs, Feed::Plunge);
+        }
+    }
+}

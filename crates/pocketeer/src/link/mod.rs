@@ -1,0 +1,360 @@
+//! Linking: the order in which loops are cut, where each starts, how the tool gets down into
+//! the stock, how it goes from one loop to the next, and the depth passes. The result is a
+//! [`Toolpath`] of exact lines and arcs.
+//!
+//! Each part of the clearing tree is cut after everything inside it (inside-out): its children
+//! first, then its clean-up paths, the loops around its islands, and its outer loop last. Once
+//! a part's children are cut, the tool may move at depth anywhere that stays inside the part
+//! (every point at least the part's distance from the walls): such a move crosses only the
+//! band the part's own loops are about to clear. Other moves retract to the safe height and
+//! come down again where the stock is already cleared, or enter anew.
+
+mod entry;
+mod walk;
+
+pub use entry::Helix;
+
+use crate::clear::{ClearPlan, Node, Path};
+use crate::geom::{Point, Segment, Tolerance};
+use crate::offset::Region;
+use crate::toolpath::{Feed, Point3, Toolpath};
+
+/// Which way the tool goes round.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// Material on the tool's left with a clockwise (M3) spindle: clockwise along the pocket
+    /// wall, counter-clockwise around islands.
+    Climb,
+    /// The opposite.
+    Conventional,
+}
+
+/// How the tool gets down into the stock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Entry {
+    /// A helix in the first part cut; a ramp when none fits; a plunge when neither does.
+    Helix,
+    /// A ramp along the first path; a plunge when it is too short.
+    Ramp,
+    /// Straight down.
+    Plunge,
+}
+
+/// How loops become one tool path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkParams {
+    /// Tool radius, mm.
+    pub tool_radius: f64,
+    /// Final depth below the stock top, mm (positive).
+    pub depth: f64,
+    /// Largest depth of one pass, mm.
+    pub step_down: f64,
+    /// Height above the stock for rapid moves, mm.
+    pub safe_z: f64,
+    /// Climb or conventional.
+    pub direction: Direction,
+    /// Helix, ramp or plunge.
+    pub entry: Entry,
+    /// Largest angle of helix and ramp moves from the horizontal, radians.
+    pub ramp_angle: f64,
+}
+
+/// A linked tool path and what the user should know about it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Linked {
+    /// The moves.
+    pub toolpath: Toolpath,
+    /// Remarks, such as plunges where nothing else fitted.
+    pub warnings: Vec<String>,
+}
+
+/// Height above the stock from which the tool goes down at the plunge feed.
+const APPROACH: f64 = 1.0;
+
+/// The Z of each depth pass: equal passes of at most `step_down`, the last at `-depth`.
+///
+/// ```
+/// assert_eq!(pocketeer::link::pass_depths(2.0, 0.8), vec![-2.0 / 3.0, -4.0 / 3.0, -2.0]);
+/// assert_eq!(pocketeer::link::pass_depths(2.0, 2.0), vec![-2.0]);
+/// ```
+pub fn pass_depths(depth: f64, step_down: f64) -> Vec<f64> {
+    let n = (depth / step_down - 1e-9).ceil().max(1.0) as usize;
+    (1..=n).map(|k| -depth * k as f64 / n as f64).collect()
+}
+
+/// Links the plans of several pockets (each with its prepared region) into one tool path,
+/// starting and ending at the safe height.
+pub fn link(jobs: &[(&Region, &ClearPlan)], params: &LinkParams, tol: &Tolerance) -> Linked {
+    let start = Point3::new(0.0, 0.0, params.safe_z);
+    let mut linker = Linker {
+        params,
+        tol,
+        path: Toolpath::new(start),
+        warnings: Vec::new(),
+        region: jobs.first().map(|j| j.0),
+        plan: None,
+        z: 0.0,
+        z_top: 0.0,
+        down: false,
+    };
+    let passes = pass_depths(params.depth, params.step_down);
+    for (region, plan) in jobs {
+        linker.region = Some(region);
+        linker.plan = Some(plan);
+        for &root in &plan.roots {
+            let mut z_top = 0.0;
+            for &z in &passes {
+                linker.z = z;
+                linker.z_top = z_top;
+                linker.cut(root);
+                linker.retract();
+                z_top = z;
+            }
+        }
+    }
+    Linked {
+        toolpath: linker.path,
+        warnings: linker.warnings,
+    }
+}
+
+struct Linker<'a> {
+    params: &'a LinkParams,
+    tol: &'a Tolerance,
+    path: Toolpath,
+    warnings: Vec<String>,
+    region: Option<&'a Region>,
+    plan: Option<&'a ClearPlan>,
+    /// Depth of the current pass.
+    z: f64,
+    /// Floor of the previous pass (0 for the first): the stock is cleared down to it.
+    z_top: f64,
+    /// True while the tool is down at the pass depth.
+    down: bool,
+}
+
+impl<'a> Linker<'a> {
+    fn plan(&self) -> &'a ClearPlan {
+        self.plan
+            .unwrap_or_else(|| unreachable!("a plan is set before cutting"))
+    }
+
+    fn region(&self) -> &'a Region {
+        self.region
+            .unwrap_or_else(|| unreachable!("a region is set before cutting"))
+    }
+
+    fn here(&self) -> Point {
+        self.path.position().xy()
+    }
+
+    /// Cuts the part `n` and everything inside it.
+    fn cut(&mut self, n: usize) {
+        let plan = self.plan();
+        let node = &plan.nodes[n];
+        let mut children = node.children.clone();
+        while !children.is_empty() {
+            let here = self.here();
+            let k = nearest(&children, |&c| {
+                let b = plan.nodes[c].outer.bbox();
+                b.min.midpoint(b.max).distance(here)
+            });
+            self.cut(children.swap_remove(k));
+        }
+        let mut items: Vec<Path> = node.cleanups.clone();
+        items.extend(node.holes.iter().map(|h| loop_path(&h.segments)));
+        let mut first = node.children.is_empty();
+        while !items.is_empty() {
+            let here = self.here();
+            // The outer loop goes last, at the wall of the part.
+            let k = nearest(&items, |p| walk::distance_to(p, here));
+            let item = items.swap_remove(k);
+            self.cut_path(node, &item, first);
+            first = false;
+        }
+        self.cut_path(node, &loop_path(&node.outer.segments), first);
+    }
+
+    /// Cuts one loop or clean-up path of `node`; `enter` when the tool comes to it through
+    /// uncut stock (the first path of a part with nothing inside it).
+    fn cut_path(&mut self, node: &Node, item: &Path, enter: bool) {
+        let reverse = self.params.direction == Direction::Climb;
+        let segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
+        let q = segments[0].start();
+        if enter || !self.down {
+            self.retract();
+            self.enter(node, &segments);
+        } else if !self.stays_inside(self.here(), q, node.distance) {
+            self.retract();
+            self.come_down_near(node, &segments);
+        } else {
+            self.path.line(Point3::at(q, self.z), Feed::Cut);
+        }
+        walk::follow(&mut self.path, &segments, self.z);
+        self.down = true;
+    }
+
+    /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from
+    /// every wall and island.
+    fn stays_inside(&self, a: Point, b: Point, d: f64) -> bool {
+        let slack = 1e-6 * d.max(1.0) + 10.0 * self.tol.eps;
+        a.distance(b) <= slack
+            || !self.region().segment_nearer_than(
+                &Segment::Line(crate::geom::Line::new(a, b)),
+                d - slack,
+                self.tol,
+            )
+    }
+
+    /// Up to the safe height: at the feed rate out of the stock (no rapid ever moves below the
+    /// stock top), then rapid.
+    fn retract(&mut self) {
+        let p = self.path.position();
+        if p.z < 0.0 {
+            self.path.line(Point3::new(p.x, p.y, 0.0), Feed::Cut);
+        }
+        if p.z < self.params.safe_z {
+            self.path.rapid(Point3::new(p.x, p.y, self.params.safe_z));
+        }
+        self.down = false;
+    }
+
+    /// From the safe height to `p` at the height where the stock begins (the previous floor).
+    fn descend_to_floor(&mut self, p: Point) {
+        let approach = APPROACH.min(self.params.safe_z);
+        self.path.rapid(Point3::at(p, self.params.safe_z));
+        self.path.rapid(Point3::at(p, approach));
+        self.path.line(Point3::at(p, self.z_top), Feed::Plunge);
+    }
+
+    /// Back down after a retract within a part whose inside is already cut: straight down onto
+    /// the nearest cut path, then across; a new entry when no such way stays inside.
+    fn come_down_near(&mut self, node: &Node, segments: &[Segment]) {
+        let plan = self.plan();
+        let q = segments[0].start();
+        let mut best: Option<(Point, f64)> = None;
+        for &c in &node.children {
+            let child = &plan.nodes[c];
+            for l in std::iter::once(&child.outer).chain(&child.holes) {
+                for s in &l.segments {
+                    let p = crate::geom::closest_point(s, q);
+                    let d = p.distance(q);
+                    if best.is_none_or(|(_, bd)| d < bd) {
+                        best = Some((p, d));
+                    }
+                }
+            }
+        }
+        match best {
+            Some((p, _)) if self.stays_inside(p, q, node.distance) => {
+                self.path.rapid(Point3::at(p, self.params.safe_z));
+                let approach = APPROACH.min(self.params.safe_z);
+                self.path.rapid(Point3::at(p, approach));
+                self.path.line(Point3::at(p, self.z), Feed::Plunge);
+                self.path.line(Point3::at(q, self.z), Feed::Cut);
+            }
+            _ => self.enter(node, segments),
+        }
+    }
+
+    /// A helix in the part `node` near the start of `segments`; when the part is too small,
+    /// in the part around it, and so on outwards (still inside the region: no gouge).
+    fn find_helix(&self, node: &Node, segments: &[Segment]) -> Option<Helix> {
+        let p = self.params;
+        let q = segments[0].start();
+        let mut part = Some(node);
+        let mut first = true;
+        while let Some(n) = part {
+            let mut samples = if first {
+                entry::samples(segments, 0.5 * p.tool_radius)
+            } else {
+                Vec::new()
+            };
+            for h in std::iter::once(&n.outer).chain(&n.holes) {
+                samples.extend(entry::samples(&h.segments, 0.5 * p.tool_radius));
+            }
+            for c in &n.cleanups {
+                samples.extend(entry::samples(&c.segments, 0.5 * p.tool_radius));
+            }
+            let found = entry::find_helix(
+                self.region(),
+                &n.outer,
+                &samples,
+                n.distance,
+                p.tool_radius,
+                0.5 * p.tool_radius,
+                0.1 * p.tool_radius,
+                q,
+            );
+            if found.is_some() {
+                return found;
+            }
+            first = false;
+            part = n.parent.map(|i| &self.plan().nodes[i]);
+        }
+        None
+    }
+
+    /// Enters the stock to start `segments` (a walk of `node`) at the pass depth.
+    fn enter(&mut self, node: &Node, segments: &[Segment]) {
+        let p = self.params;
+        let q = segments[0].start();
+        if p.entry == Entry::Helix {
+            if let Some(h) = self.find_helix(node, segments) {
+                let ccw = p.direction == Direction::Conventional;
+                let (start, sweep) = entry::helix_start(&h, self.z_top, self.z, p.ramp_angle, ccw, q);
+                self.descend_to_floor(start);
+                entry::helix_moves(&mut self.path, &h, self.z_top, self.z, sweep);
+                let end = self.here();
+                if self.stays_inside(end, q, p.tool_radius) {
+                    self.path.line(Point3::at(q, self.z), Feed::Cut);
+                    return;
+                }
+                // The way from the helix to the path would touch a wall: go back up and ramp.
+                self.retract();
+            }
+        }
+        let closed = segments[0].start().distance(segments[segments.len() - 1].end()) <= 10.0 * self.tol.eps;
+        let walk: Vec<Segment> = if closed {
+            segments.to_vec()
+        } else {
+            segments
+                .iter()
+                .copied()
+                .chain(segments.iter().rev().map(Segment::reversed))
+                .collect()
+        };
+        if p.entry != Entry::Plunge && walk::length(&walk) >= entry::shortest_ramp(p.tool_radius) {
+            self.descend_to_floor(q);
+            entry::ramp(&mut self.path, &walk, self.z_top, self.z, p.ramp_angle);
+            return;
+        }
+        if p.entry != Entry::Plunge {
+            self.warnings.push(format!(
+                "no room for a helix or a ramp at ({:.3}, {:.3}): plunging straight down to Z{:.3}",
+                q.x, q.y, self.z
+            ));
+        }
+        self.descend_to_floor(q);
+        self.path.line(Point3::at(q, self.z), Feed::Plunge);
+    }
+}
+
+fn loop_path(segments: &[Segment]) -> Path {
+    Path {
+        segments: segments.to_vec(),
+        closed: true,
+    }
+}
+
+/// Index of the item nearest by `distance`.
+fn nearest<T>(items: &[T], distance: impl Fn(&T) -> f64) -> usize {
+    let mut best = (0, f64::INFINITY);
+    for (i, it) in items.iter().enumerate() {
+        let d = distance(it);
+        if d < best.1 {
+            best = (i, d);
+        }
+    }
+    best.0
+}

@@ -1,0 +1,19 @@
+//! Mach3: its I/J mode is a setting that may be absolute, so the program states incremental
+//! (G91.1); cancels offsets and canned cycles; M30 to end and rewind.
+
+use super::Post;
+
+/// The Mach3 post.
+pub struct Mach3;
+
+impl Post for Mach3 {
+    fn comment(&self, text: &str) -> String {
+        format!("({text})")
+    }
+    fn setup(&self) -> &'static [&'static str] {
+        &["G90 G94 G17 G91.1", "G40 G49 G80"]
+    }
+    fn end(&self) -> &'static str {
+        "M30"
+    }
+}

@@ -1,0 +1,338 @@
+//! G-code: one writer for the moves, one small file per controller for what differs between
+//! them (start and end of the program, comments, arc centre mode).
+//!
+//! Arcs stay arcs: G2/G3 with I/J relative to the printed start point (never R), split into
+//! pieces of at most half a turn, so the centre the controller computes is within 0.0001 mm of
+//! ours and every end point lies on its circle to well under GRBL's 0.005 mm.
+
+mod grbl;
+mod linuxcnc;
+mod mach3;
+
+use crate::geom::{Point, Vector};
+use crate::toolpath::{half_turns, Feed, Move, Point3, Toolpath};
+use std::fmt::Write;
+
+/// The controllers we write for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dialect {
+    /// GRBL 1.1 (hobby machines, Arduino based).
+    Grbl,
+    /// LinuxCNC 2.8 and later.
+    LinuxCnc,
+    /// Mach3.
+    Mach3,
+}
+
+/// Units of the program (coordinates and feeds).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProgramUnits {
+    /// Millimetres (G21).
+    Millimetres,
+    /// Inches (G20).
+    Inches,
+}
+
+/// What the program needs besides the moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProgramSettings {
+    /// Units of the program.
+    pub units: ProgramUnits,
+    /// Cutting feed, mm/min.
+    pub feed: f64,
+    /// Plunge feed, mm/min.
+    pub plunge_feed: f64,
+    /// Spindle speed, rpm.
+    pub spindle: f64,
+    /// Safe height, mm.
+    pub safe_z: f64,
+    /// Lines for the header comment (tool, stepover, statistics...).
+    pub header: Vec<String>,
+}
+
+/// What one controller needs at the start and end of a program.
+trait Post {
+    /// A comment line holding `text`.
+    fn comment(&self, text: &str) -> String;
+    /// Modal setup after the units word.
+    fn setup(&self) -> &'static [&'static str];
+    /// The program end.
+    fn end(&self) -> &'static str;
+}
+
+fn post(d: Dialect) -> &'static dyn Post {
+    match d {
+        Dialect::Grbl => &grbl::Grbl,
+        Dialect::LinuxCnc => &linuxcnc::LinuxCnc,
+        Dialect::Mach3 => &mach3::Mach3,
+    }
+}
+
+/// Parentheses close a comment in every dialect: keep them (and control characters) out of
+/// the text.
+fn clean(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            '(' | ')' => '/',
+            c if c.is_control() => ' ',
+            c => c,
+        })
+        .collect()
+}
+
+/// Writes `path` as a G-code program for `dialect`.
+///
+/// ```
+/// use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+/// use pocketeer::toolpath::{Feed, Point3, Toolpath};
+/// let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+/// path.rapid(Point3::new(10.0, 0.0, 5.0));
+/// path.line(Point3::new(10.0, 0.0, -1.0), Feed::Plunge);
+/// let settings = ProgramSettings {
+///     units: ProgramUnits::Millimetres, feed: 1000.0, plunge_feed: 300.0, spindle: 12000.0,
+///     safe_z: 5.0, header: vec![],
+/// };
+/// let g = write_gcode(&path, &settings, Dialect::Grbl);
+/// assert!(g.contains("G0 X10.0000 Y0.0000\n"));
+/// assert!(g.contains("G1 Z-1.0000 F300\n"));
+/// ```
+pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> String {
+    let post = post(dialect);
+    let mut w = Writer {
+        out: String::new(),
+        scale: match s.units {
+            ProgramUnits::Millimetres => 1.0,
+            ProgramUnits::Inches => 1.0 / 25.4,
+        },
+        decimals: match s.units {
+            ProgramUnits::Millimetres => 4,
+            ProgramUnits::Inches => 5,
+        },
+        at: [None, None, None],
+        feed: None,
+    };
+    for line in &s.header {
+        w.line(&post.comment(&clean(line)));
+    }
+    w.line(match s.units {
+        ProgramUnits::Millimetres => "G21",
+        ProgramUnits::Inches => "G20",
+    });
+    for l in post.setup() {
+        w.line(l);
+    }
+    let safe = w.num(s.safe_z);
+    w.line(&format!("G0 Z{safe}"));
+    w.at[2] = Some(safe);
+    w.line(&format!("M3 S{}", fmt_rate(s.spindle)));
+    let mut from = path.start;
+    for m in &path.moves {
+        match *m {
+            Move::Rapid { to } => w.motion("G0", to, None, ""),
+            Move::Line { to, feed } => {
+                let f = w.feed_word(rate(s, feed));
+                w.motion("G1", to, None, &f)
+            }
+            Move::Arc {
+                to,
+                center,
+                sweep,
+                feed,
+            } => {
+                let f = w.feed_word(rate(s, feed));
+                w.arc(from, to, center, sweep, &f)
+            }
+        }
+        from = m.to();
+    }
+    let p = path.position();
+    if p.z < s.safe_z {
+        w.motion("G0", Point3::new(p.x, p.y, s.safe_z), None, "");
+    }
+    w.line("M5");
+    w.line(post.end());
+    w.out
+}
+
+fn rate(s: &ProgramSettings, f: Feed) -> f64 {
+    match f {
+        Feed::Cut => s.feed,
+        Feed::Plunge => s.plunge_feed,
+    }
+}
+
+/// A rate (feed or speed) without needless decimals.
+fn fmt_rate(v: f64) -> String {
+    let t = format!("{v:.3}");
+    let t = t.trim_end_matches('0').trim_end_matches('.');
+    t.to_string()
+}
+
+struct Writer {
+    out: String,
+    scale: f64,
+    decimals: usize,
+    /// The last printed X, Y, Z (as printed, in program units).
+    at: [Option<String>; 3],
+    feed: Option<String>,
+}
+
+impl Writer {
+    fn line(&mut self, l: &str) {
+        self.out.push_str(l);
+        self.out.push('\n');
+    }
+
+    fn num(&self, mm: f64) -> String {
+        let t = format!("{:.*}", self.decimals, mm * self.scale);
+        // No "-0.0000".
+        if t.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+            t.trim_start_matches('-').to_string()
+        } else {
+            t
+        }
+    }
+
+    /// " F..." when the feed changes, else "".
+    fn feed_word(&mut self, mm_per_min: f64) -> String {
+        let f = fmt_rate(mm_per_min * self.scale);
+        if self.feed.as_deref() == Some(&f) {
+            String::new()
+        } else {
+            self.feed = Some(f.clone());
+            format!(" F{f}")
+        }
+    }
+
+    /// Writes a motion word with the coordinates that change (and `extra` words).
+    fn motion(&mut self, word: &str, to: Point3, ij: Option<(String, String)>, feed: &str) {
+        let mut l = word.to_string();
+        let coords = [("X", to.x), ("Y", to.y), ("Z", to.z)];
+        let mut moved = false;
+        for (k, (name, v)) in coords.iter().enumerate() {
+            let t = self.num(*v);
+            if self.at[k].as_deref() != Some(&t) {
+                let _ = write!(l, " {name}{t}");
+                self.at[k] = Some(t);
+                moved = true;
+            }
+        }
+        if let Some((i, j)) = ij {
+            let _ = write!(l, " I{i} J{j}");
+        } else if !moved {
+            return;
+        }
+        l.push_str(feed);
+        self.line(&l);
+    }
+
+    fn arc(&mut self, from: Point3, to: Point3, center: Point, sweep: f64, feed: &str) {
+        let radius = center.distance(from.xy());
+        let pieces = half_turns(sweep);
+        let mut start = from;
+        let mut angle = (from.xy() - center).angle();
+        let mut feed = feed.to_string();
+        for (k, piece) in pieces.iter().enumerate() {
+            angle += piece;
+            let end = if k + 1 == pieces.len() {
+                to
+            } else {
+                let xy = center + Vector::from_angle(angle) * radius;
+                let z = from.z + (to.z - from.z) * (k + 1) as f64 / pieces.len() as f64;
+                Point3::at(xy, z)
+            };
+            self.arc_piece(start, end, center, *piece, &feed);
+            feed.clear();
+            start = end;
+        }
+    }
+
+    /// One arc of at most half a turn; a line when it is too small for a controller to take
+    /// as an arc (its printed ends equal, or shorter than a thousandth of a millimetre).
+    fn arc_piece(&mut self, from: Point3, to: Point3, center: Point, sweep: f64, feed: &str) {
+        let radius = center.distance(from.xy());
+        let printed_from = [self.num(from.x), self.num(from.y)];
+        let printed_to = [self.num(to.x), self.num(to.y)];
+        if radius * sweep.abs() < 1e-3 || printed_from == printed_to {
+            self.motion("G1", to, None, feed);
+            return;
+        }
+        // I and J from the point the controller starts at: the printed one.
+        let parse = |t: &str| t.parse::<f64>().unwrap_or(0.0) / self.scale;
+        let sx = self.at[0].as_deref().map_or(from.x, parse);
+        let sy = self.at[1].as_deref().map_or(from.y, parse);
+        let ij = (self.num(center.x - sx), self.num(center.y - sy));
+        let word = if sweep > 0.0 { "G3" } else { "G2" };
+        // Arc words always carry X and Y, so the controller never reads a full circle.
+        self.at[0] = None;
+        self.at[1] = None;
+        self.motion(word, to, Some(ij), feed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn settings(units: ProgramUnits) -> ProgramSettings {
+        ProgramSettings {
+            units,
+            feed: 1200.0,
+            plunge_feed: 300.0,
+            spindle: 18000.0,
+            safe_z: 5.0,
+            header: vec!["tool (6 mm)".into()],
+        }
+    }
+
+    fn circle_path() -> Toolpath {
+        let mut p = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+        p.rapid(Point3::new(10.0, 0.0, 5.0));
+        p.line(Point3::new(10.0, 0.0, -1.0), Feed::Plunge);
+        p.arc_to(
+            Point3::new(10.0, 0.0, -1.0),
+            Point::new(0.0, 0.0),
+            -2.0 * PI,
+            Feed::Cut,
+        );
+        p
+    }
+
+    #[test]
+    fn full_circles_become_two_half_turns_with_ij() {
+        let g = write_gcode(
+            &circle_path(),
+            &settings(ProgramUnits::Millimetres),
+            Dialect::Grbl,
+        );
+        assert!(
+            g.contains("G2 X-10.0000 Y0.0000 I-10.0000 J0.0000 F1200\n"),
+            "{g}"
+        );
+        assert!(g.contains("G2 X10.0000 Y0.0000 I10.0000 J0.0000\n"), "{g}");
+        assert!(g.contains("(tool /6 mm/)"));
+        assert!(!g.contains(" R"));
+    }
+
+    #[test]
+    fn inch_programs_scale_coordinates_and_feeds() {
+        let g = write_gcode(&circle_path(), &settings(ProgramUnits::Inches), Dialect::LinuxCnc);
+        assert!(g.contains("G20\n"));
+        assert!(g.contains("G0 X0.39370 Y0.00000\n"), "{g}");
+        assert!(g.contains("F47.244"), "{g}");
+    }
+
+    #[test]
+    fn tiny_arcs_become_lines() {
+        let mut p = Toolpath::new(Point3::new(0.0, 0.0, -1.0));
+        p.arc_to(
+            Point3::new(1e-5, 0.0, -1.0),
+            Point::new(0.0, 5.0),
+            2e-6,
+            Feed::Cut,
+        );
+        let g = write_gcode(&p, &settings(ProgramUnits::Millimetres), Dialect::Grbl);
+        assert!(!g.contains("\nG2 ") && !g.contains("\nG3 "), "{g}");
+    }
+}

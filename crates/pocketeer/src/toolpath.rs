@@ -1,0 +1,244 @@
+//! Tool paths: the moves of the tool centre (tip) in three dimensions, lines and arcs exact,
+//! the only thing the G-code posts translate.
+
+use crate::geom::{normalize_angle, Point};
+use std::f64::consts::TAU;
+
+/// A point in machine space, mm; Z = 0 is the top of the stock, cutting happens below.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point3 {
+    /// X.
+    pub x: f64,
+    /// Y.
+    pub y: f64,
+    /// Z.
+    pub z: f64,
+}
+
+impl Point3 {
+    /// The point (x, y, z).
+    pub const fn new(x: f64, y: f64, z: f64) -> Point3 {
+        Point3 { x, y, z }
+    }
+
+    /// `p` at height `z`.
+    pub const fn at(p: Point, z: f64) -> Point3 {
+        Point3 { x: p.x, y: p.y, z }
+    }
+
+    /// The point in the XY plane.
+    pub const fn xy(self) -> Point {
+        Point::new(self.x, self.y)
+    }
+
+    /// Distance to `o`.
+    pub fn distance(self, o: Point3) -> f64 {
+        ((self.x - o.x).powi(2) + (self.y - o.y).powi(2) + (self.z - o.z).powi(2)).sqrt()
+    }
+}
+
+/// Which feed rate a cutting move uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feed {
+    /// The cutting feed.
+    Cut,
+    /// The plunge feed: any move that goes down into the stock.
+    Plunge,
+}
+
+/// One move from the previous position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Move {
+    /// Straight at rapid speed (G0).
+    Rapid {
+        /// Where to.
+        to: Point3,
+    },
+    /// Straight at a feed rate (G1).
+    Line {
+        /// Where to.
+        to: Point3,
+        /// Which feed.
+        feed: Feed,
+    },
+    /// A circular arc in XY, helical when Z changes (G2/G3).
+    Arc {
+        /// Where to.
+        to: Point3,
+        /// Centre in XY.
+        center: Point,
+        /// Signed angle swept, radians: positive counter-clockwise (G3), up to any number of
+        /// turns.
+        sweep: f64,
+        /// Which feed.
+        feed: Feed,
+    },
+}
+
+impl Move {
+    /// The end of the move.
+    pub fn to(&self) -> Point3 {
+        match *self {
+            Move::Rapid { to } | Move::Line { to, .. } | Move::Arc { to, .. } => to,
+        }
+    }
+
+    /// Length of the move from `from`, helical arcs included.
+    pub fn length(&self, from: Point3) -> f64 {
+        match *self {
+            Move::Rapid { to } | Move::Line { to, .. } => from.distance(to),
+            Move::Arc {
+                to, center, sweep, ..
+            } => {
+                let planar = center.distance(from.xy()) * sweep.abs();
+                planar.hypot(to.z - from.z)
+            }
+        }
+    }
+}
+
+/// The moves of one program, starting at `start` (above the stock at the safe height).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Toolpath {
+    /// Where the tool is before the first move.
+    pub start: Point3,
+    /// The moves.
+    pub moves: Vec<Move>,
+}
+
+/// Figures of a tool path.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stats {
+    /// Length of feed moves at the cutting feed, mm.
+    pub cut_length: f64,
+    /// Length of feed moves at the plunge feed, mm.
+    pub plunge_length: f64,
+    /// Length of rapid moves, mm.
+    pub rapid_length: f64,
+    /// Number of rapid moves upwards (retracts to the safe height).
+    pub retracts: usize,
+}
+
+impl Stats {
+    /// Estimated machining time, seconds, at the given feeds (mm/min); rapids at `rapid`.
+    pub fn seconds(&self, feed: f64, plunge_feed: f64, rapid: f64) -> f64 {
+        60.0 * (self.cut_length / feed + self.plunge_length / plunge_feed + self.rapid_length / rapid)
+    }
+}
+
+impl Toolpath {
+    /// An empty path starting at `start`.
+    pub fn new(start: Point3) -> Toolpath {
+        Toolpath {
+            start,
+            moves: Vec::new(),
+        }
+    }
+
+    /// Where the tool is after the last move.
+    pub fn position(&self) -> Point3 {
+        self.moves.last().map_or(self.start, Move::to)
+    }
+
+    /// Rapid to `to` (skipped when already there).
+    pub fn rapid(&mut self, to: Point3) {
+        if to != self.position() {
+            self.moves.push(Move::Rapid { to });
+        }
+    }
+
+    /// Straight feed move to `to` (skipped when already there).
+    pub fn line(&mut self, to: Point3, feed: Feed) {
+        if to != self.position() {
+            self.moves.push(Move::Line { to, feed });
+        }
+    }
+
+    /// Arc (helical when `z` changes) around `center` sweeping `sweep` radians, ending at
+    /// height `z`.
+    pub fn arc(&mut self, center: Point, sweep: f64, z: f64, feed: Feed) {
+        let from = self.position();
+        let v = from.xy() - center;
+        let end = center + crate::geom::Vector::from_angle(normalize_angle(v.angle() + sweep)) * v.length();
+        self.moves.push(Move::Arc {
+            to: Point3::at(end, z),
+            center,
+            sweep,
+            feed,
+        });
+    }
+
+    /// Arc (helical when `z` changes) around `center` to `to`, sweeping `sweep` radians: for
+    /// arcs whose exact end point is known.
+    pub fn arc_to(&mut self, to: Point3, center: Point, sweep: f64, feed: Feed) {
+        self.moves.push(Move::Arc {
+            to,
+            center,
+            sweep,
+            feed,
+        });
+    }
+
+    /// Lengths and retracts.
+    pub fn stats(&self) -> Stats {
+        let mut s = Stats::default();
+        let mut at = self.start;
+        for m in &self.moves {
+            let len = m.length(at);
+            match m {
+                Move::Rapid { to } => {
+                    s.rapid_length += len;
+                    if to.z > at.z {
+                        s.retracts += 1;
+                    }
+                }
+                Move::Line { feed: Feed::Cut, .. } | Move::Arc { feed: Feed::Cut, .. } => s.cut_length += len,
+                _ => s.plunge_length += len,
+            }
+            at = m.to();
+        }
+        s
+    }
+
+    /// The lowest Z reached.
+    pub fn deepest(&self) -> f64 {
+        self.moves.iter().map(|m| m.to().z).fold(self.start.z, f64::min)
+    }
+}
+
+/// Splits a sweep into pieces of at most half a turn each (G-code arcs beyond 180° are
+/// ambiguous or refused by some controllers), returned as the sweep of each piece.
+pub fn half_turns(sweep: f64) -> Vec<f64> {
+    let n = ((sweep.abs() / (0.5 * TAU)) - 1e-12).ceil().max(1.0) as usize;
+    vec![sweep / n as f64; n]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_count_lengths_and_retracts() {
+        let mut t = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+        t.rapid(Point3::new(10.0, 0.0, 5.0));
+        t.line(Point3::new(10.0, 0.0, -1.0), Feed::Plunge);
+        t.arc(Point::new(5.0, 0.0), TAU, -1.0, Feed::Cut);
+        t.line(Point3::new(10.0, 0.0, 0.0), Feed::Cut);
+        t.rapid(Point3::new(10.0, 0.0, 5.0));
+        let s = t.stats();
+        assert!((s.rapid_length - 15.0).abs() < 1e-12);
+        assert!((s.plunge_length - 6.0).abs() < 1e-12);
+        assert!((s.cut_length - 10.0 * std::f64::consts::PI - 1.0).abs() < 1e-9);
+        assert_eq!(s.retracts, 1);
+        assert!((t.position().x - 10.0).abs() < 1e-12);
+        assert_eq!(t.deepest(), -1.0);
+    }
+
+    #[test]
+    fn sweeps_split_into_half_turns() {
+        assert_eq!(half_turns(1.0), vec![1.0]);
+        assert_eq!(half_turns(std::f64::consts::PI).len(), 1);
+        assert_eq!(half_turns(-TAU).len(), 2);
+        assert_eq!(half_turns(3.5 * TAU).len(), 7);
+    }
+}

@@ -1,0 +1,200 @@
+//! A test-only replay of G-code: reads the moves back from the program text (not from our
+//! tool path values) and measures gouge and leftover against the pocket by exact distances
+//! and a fine grid.
+
+use pocketeer::geom::{Arc, Line, Point, Segment, SegmentIndex, Tolerance};
+use pocketeer::offset::Region;
+
+/// One move read back, seen from above, with its Z at both ends.
+#[derive(Debug, Clone)]
+pub struct Read {
+    pub segment: Segment,
+    pub z0: f64,
+    pub z1: f64,
+    pub rapid: bool,
+    pub line: usize,
+}
+
+/// Reads G0/G1/G2/G3 with X Y Z I J F words (incremental I/J, absolute coordinates,
+/// millimetres or inches), comments in parentheses or after `;`.
+pub fn read(program: &str) -> Result<Vec<Read>, String> {
+    let mut pos = [0.0f64, 0.0, 0.0];
+    let mut known_z = false;
+    let mut motion = -1i32;
+    let mut scale = 1.0;
+    let mut out = Vec::new();
+    for (n, raw) in program.lines().enumerate() {
+        let mut text = String::new();
+        let mut depth = 0;
+        for c in raw.chars() {
+            match c {
+                '(' => depth += 1,
+                ')' => depth -= 1,
+                ';' if depth == 0 => break,
+                c if depth == 0 => text.push(c.to_ascii_uppercase()),
+                _ => {}
+            }
+        }
+        let mut words: Vec<(char, f64)> = Vec::new();
+        let mut chars = text.chars().filter(|c| !c.is_whitespace()).peekable();
+        while let Some(letter) = chars.next() {
+            let mut num = String::new();
+            while let Some(&c) = chars.peek() {
+                if c.is_ascii_digit() || c == '.' || c == '-' || c == '+' {
+                    num.push(c);
+                    chars.next();
+                } else {
+                    break;
+                }
+            }
+            let v: f64 = num
+                .parse()
+                .map_err(|_| format!("line {}: bad word {letter}{num}", n + 1))?;
+            words.push((letter, v));
+        }
+        let (mut target, mut ij, mut moved) = (pos, [0.0, 0.0], false);
+        for &(l, v) in &words {
+            match l {
+                'G' if [0.0, 1.0, 2.0, 3.0].contains(&v) => motion = v as i32,
+                'G' if v == 20.0 => scale = 25.4,
+                'G' if v == 21.0 => scale = 1.0,
+                'X' => (target[0], moved) = (v * scale, true),
+                'Y' => (target[1], moved) = (v * scale, true),
+                'Z' => (target[2], moved, known_z) = (v * scale, true, true),
+                'I' => ij[0] = v * scale,
+                'J' => ij[1] = v * scale,
+                _ => {}
+            }
+        }
+        if !moved {
+            continue;
+        }
+        if !known_z {
+            return Err(format!("line {}: XY move before any Z", n + 1));
+        }
+        let (a, b) = (Point::new(pos[0], pos[1]), Point::new(target[0], target[1]));
+        let segment = match motion {
+            0 | 1 => Segment::Line(Line::new(a, b)),
+            2 | 3 => {
+                let c = Point::new(pos[0] + ij[0], pos[1] + ij[1]);
+                let (r0, r1) = (c.distance(a), c.distance(b));
+                if (r0 - r1).abs() > 0.001 {
+                    return Err(format!(
+                        "line {}: arc end off its circle by {:.6}",
+                        n + 1,
+                        (r0 - r1).abs()
+                    ));
+                }
+                let mut sweep = (b - c).angle() - (a - c).angle();
+                if motion == 3 && sweep <= 0.0 {
+                    sweep += std::f64::consts::TAU;
+                }
+                if motion == 2 && sweep >= 0.0 {
+                    sweep -= std::f64::consts::TAU;
+                }
+                Segment::Arc(Arc::new(c, r0, (a - c).angle(), sweep))
+            }
+            _ => return Err(format!("line {}: move without a motion mode", n + 1)),
+        };
+        out.push(Read {
+            segment,
+            z0: pos[2],
+            z1: target[2],
+            rapid: motion == 0,
+            line: n + 1,
+        });
+        pos = target;
+    }
+    Ok(out)
+}
+
+/// What a replay measured.
+#[derive(Debug)]
+pub struct Measured {
+    /// Largest depth by which the tool disc goes outside the region below Z=0, mm.
+    pub gouge: f64,
+    pub gouge_line: usize,
+    /// Reachable grid points farther than the radius (plus `slack`) from every cut at the
+    /// final depth.
+    pub leftover_points: Vec<Point>,
+    /// Reachable grid points tested.
+    pub tested: usize,
+    pub rapids_below_top: usize,
+    pub deepest: f64,
+}
+
+/// Replays `moves` for a tool of radius `r` over `region` whose walls are `walls`; leftover is
+/// tested on a grid of step `h`: points of the region at least `r` from every wall, or within
+/// `r - slack` of the loops `centres` bounding those points (the region eroded by r), are
+/// reachable, and each must lie within `r + slack` of a cut at `depth`.
+#[allow(clippy::too_many_arguments)]
+pub fn measure(
+    moves: &[Read],
+    region: &Region,
+    walls: &[Segment],
+    centres: &[Segment],
+    r: f64,
+    depth: f64,
+    h: f64,
+    slack: f64,
+) -> Measured {
+    let tol = Tolerance::default();
+    let mut m = Measured {
+        gouge: 0.0,
+        gouge_line: 0,
+        leftover_points: Vec::new(),
+        tested: 0,
+        rapids_below_top: 0,
+        deepest: 0.0,
+    };
+    let wall_index = SegmentIndex::new(walls);
+    let mut floor: Vec<Segment> = Vec::new();
+    for mv in moves {
+        m.deepest = m.deepest.min(mv.z1);
+        if mv.rapid {
+            if mv.z0.min(mv.z1) < -1e-9 {
+                m.rapids_below_top += 1;
+            }
+            continue;
+        }
+        if mv.z0.min(mv.z1) < -1e-9 {
+            // Exact nearest distance from the centre path to the walls, and inside the region.
+            let mut worst = f64::INFINITY;
+            for w in walls {
+                worst = worst.min(pocketeer::geom::segment_distance(w, &mv.segment, tol.eps).0);
+            }
+            let mid = mv.segment.point_at(0.5);
+            let inside = region.contains(mid) || wall_index.distance(mid) < 1e-6;
+            let gouge = if inside { r - worst } else { r + worst };
+            if gouge > m.gouge {
+                m.gouge = gouge;
+                m.gouge_line = mv.line;
+            }
+        }
+        if (mv.z0 - depth).abs() < 1e-3 && (mv.z1 - depth).abs() < 1e-3 && mv.segment.length() > 0.0 {
+            floor.push(mv.segment);
+        }
+    }
+    let cut_index = SegmentIndex::new(&floor);
+    let centre_index = SegmentIndex::new(centres);
+    let bbox = walls
+        .iter()
+        .fold(pocketeer::geom::Aabb::EMPTY, |b, s| b.union(&s.bbox()));
+    let (nx, ny) = (
+        (bbox.width() / h).ceil() as usize,
+        (bbox.height() / h).ceil() as usize,
+    );
+    for i in 0..=nx {
+        for j in 0..=ny {
+            let p = Point::new(bbox.min.x + i as f64 * h, bbox.min.y + j as f64 * h);
+            if !region.contains(p) || !(region.distance(p) >= r || centre_index.any_within(p, r - slack)) {
+                continue;
+            }
+            m.tested += 1;
+            if cut_index.distance(p) > r + slack {
+                m.leftover_points.push(p);
+            }
+        }
+    }
+    m
+}

@@ -1,0 +1,170 @@
+//! The whole `pocket` job on drawings, read back from the G-code text: the tool never leaves
+//! the region below the stock top (no gouge), and everything the tool can reach is cut at the
+//! final depth (no leftover), at stepovers up to 90 % of the diameter.
+
+mod common;
+
+use common::replay::{measure, read};
+use pocketeer::clear::ClearParams;
+use pocketeer::geom::{Contour, Point, Segment, Tolerance};
+use pocketeer::import::Pocket;
+use pocketeer::link::{Direction, Entry, LinkParams};
+use pocketeer::offset::{offset_pocket, Region};
+use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+
+struct Outcome {
+    gouge: f64,
+    leftover: usize,
+    tested: usize,
+    deepest: f64,
+    rapids_below_top: usize,
+    warnings: Vec<String>,
+}
+
+fn run(
+    pockets: &[Pocket],
+    diameter: f64,
+    stepover: f64,
+    depth: f64,
+    entry: Entry,
+    dialect: Dialect,
+) -> Outcome {
+    let tol = Tolerance::default();
+    let r = 0.5 * diameter;
+    let clear = ClearParams {
+        tool_radius: r,
+        stepover,
+        allowance: 0.0,
+    };
+    let link = LinkParams {
+        tool_radius: r,
+        depth,
+        step_down: diameter,
+        safe_z: 5.0,
+        direction: Direction::Climb,
+        entry,
+        ramp_angle: 3f64.to_radians(),
+    };
+    let job = pocketeer::job::pocket_job(pockets, &clear, &link, &tol).expect("job");
+    let settings = ProgramSettings {
+        units: ProgramUnits::Millimetres,
+        feed: 1000.0,
+        plunge_feed: 300.0,
+        spindle: 10000.0,
+        safe_z: 5.0,
+        header: vec![],
+    };
+    let program = write_gcode(&job.linked.toolpath, &settings, dialect);
+    let moves = read(&program).expect("the program reads back");
+    let mut out = Outcome {
+        gouge: 0.0,
+        leftover: 0,
+        tested: 0,
+        deepest: 0.0,
+        rapids_below_top: 0,
+        warnings: job.linked.warnings.clone(),
+    };
+    for p in pockets {
+        let region = Region::new(p);
+        let walls: Vec<Segment> = std::iter::once(&p.boundary)
+            .chain(&p.islands)
+            .flat_map(|c| c.segments.iter().copied())
+            .collect();
+        let centres: Vec<Segment> = offset_pocket(p, r, &tol)
+            .iter()
+            .flat_map(|c| c.segments.iter().copied())
+            .collect();
+        let m = measure(&moves, &region, &walls, &centres, r, -depth, 0.2, 0.01);
+        out.gouge = out.gouge.max(m.gouge);
+        out.leftover += m.leftover_points.len();
+        if !m.leftover_points.is_empty() {
+            eprintln!(
+                "leftover at {:?}",
+                &m.leftover_points[..m.leftover_points.len().min(5)]
+            );
+        }
+        out.tested += m.tested;
+        out.deepest = m.deepest;
+        out.rapids_below_top = m.rapids_below_top;
+    }
+    out
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
+    let p = Point::new;
+    Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
+}
+
+fn circle_cw(cx: f64, cy: f64, r: f64) -> Contour {
+    Contour::new(vec![Segment::Arc(pocketeer::geom::Arc::new(
+        Point::new(cx, cy),
+        r,
+        0.0,
+        -std::f64::consts::TAU,
+    ))])
+}
+
+fn star(points: usize, outer: f64, inner: f64) -> Contour {
+    let pts: Vec<Point> = (0..2 * points)
+        .map(|k| {
+            let a = std::f64::consts::PI * k as f64 / points as f64 + 0.1;
+            let r = if k % 2 == 0 { outer } else { inner };
+            Point::new(r * a.cos(), r * a.sin())
+        })
+        .collect();
+    Contour::polygon(&pts)
+}
+
+fn assert_clean(o: &Outcome, depth: f64) {
+    assert!(o.gouge <= 0.01, "gouge {:.4} mm", o.gouge);
+    assert_eq!(
+        o.leftover, 0,
+        "{} of {} reachable points left uncut",
+        o.leftover, o.tested
+    );
+    assert!(o.tested > 100, "only {} points tested", o.tested);
+    assert!((o.deepest + depth).abs() < 1e-3, "deepest {}", o.deepest);
+    assert_eq!(o.rapids_below_top, 0);
+}
+
+#[test]
+fn rectangle_with_two_round_islands_at_every_stepover_up_to_90_percent() {
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 100.0, 60.0),
+        islands: vec![circle_cw(30.0, 30.0, 10.0), circle_cw(70.0, 30.0, 8.0)],
+    };
+    for percent in [30.0, 50.0, 70.0, 83.0, 90.0] {
+        let o = run(
+            std::slice::from_ref(&pocket),
+            6.0,
+            6.0 * percent / 100.0,
+            2.0,
+            Entry::Helix,
+            Dialect::Grbl,
+        );
+        eprintln!("{percent}%: tested {}", o.tested);
+        assert_clean(&o, 2.0);
+        assert!(o.warnings.is_empty(), "{:?}", o.warnings);
+    }
+}
+
+#[test]
+fn seven_point_star_at_80_percent() {
+    let pocket = Pocket {
+        boundary: star(7, 50.0, 22.0),
+        islands: vec![],
+    };
+    let o = run(&[pocket], 6.0, 4.8, 3.0, Entry::Helix, Dialect::LinuxCnc);
+    assert_clean(&o, 3.0);
+}
+
+#[test]
+fn bar_island_splits_the_pocket_and_both_sides_are_cleared() {
+    let bar = rect(10.0, 13.0, 50.0, 17.0).reversed();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 60.0, 30.0),
+        islands: vec![bar],
+    };
+    let o = run(&[pocket], 4.0, 3.4, 6.0, Entry::Ramp, Dialect::Mach3);
+    assert_clean(&o, 6.0);
+}
