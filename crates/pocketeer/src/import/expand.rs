@@ -72,11 +72,14 @@ impl<'a> Expander<'a> {
                         self.groups += 1;
                         self.groups
                     });
+                    // Once per entity: finding the handle scans the entity's groups, which
+                    // for a long polyline are many.
+                    let reference = e.reference(&layer);
                     for c in curves {
                         let curve = c.transformed(m);
                         if let Err(p) = curve.check_coordinates(super::MAX_COORDINATE) {
                             return Err(ImportError::BadEntity {
-                                entity: e.reference(&layer),
+                                entity: reference,
                                 what: format!(
                                     "coordinate ({}, {}) is not a number or lies beyond ±{:e} mm",
                                     super::error::fmt_number(p.x),
@@ -88,7 +91,7 @@ impl<'a> Expander<'a> {
                         self.placed.push(Placed {
                             curve,
                             layer: layer.clone(),
-                            entity: e.reference(&layer),
+                            entity: reference.clone(),
                             closed_group,
                         });
                     }

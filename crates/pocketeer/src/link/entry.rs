@@ -47,33 +47,41 @@ pub fn find_helix(
     {
         for c in candidates {
             let clearance = region.distance(c);
-            if clearance < part_distance || !outer.contains(c) || !region.contains(c) {
-                continue;
-            }
             // A little less than the room there, for rounding.
-            let radius = (clearance - tool_radius) * (1.0 - 1e-6);
-            let radius = radius.min(preferred);
-            if radius < smallest {
-                continue;
-            }
+            let radius = ((clearance - tool_radius) * (1.0 - 1e-6)).min(preferred);
             // The largest radius first, then the shortest way to the target.
             let score = c.distance(target) - 1e3 * radius;
-            if best.is_none_or(|(_, s)| score < s) {
-                best = Some((Helix { center: c, radius }, score));
+            if clearance < part_distance || radius < smallest || best.is_some_and(|(_, s)| score >= s) {
+                continue;
             }
+            // The containment tests last: the one on the part's outer loop is linear in its size.
+            if !region.contains(c) || !outer.contains(c) {
+                continue;
+            }
+            best = Some((Helix { center: c, radius }, score));
         }
     }
     best.map(|(h, _)| h)
 }
 
-/// Points along `segments` every `step` or so, with the normal to their left.
+/// Points along `segments` every `step` of length (at least one per path), with the normal to
+/// their left: the cost follows the length, not the number of segments.
 pub fn samples(segments: &[Segment], step: f64) -> Vec<(Point, Vector)> {
     let mut out = Vec::new();
+    let mut next = 0.5 * step;
+    let mut walked = 0.0;
     for s in segments {
-        let n = ((s.length() / step).ceil() as usize).clamp(1, 64);
-        for j in 0..n {
-            let t = (j as f64 + 0.5) / n as f64;
+        let len = s.length();
+        while next <= walked + len {
+            let t = if len > 0.0 { (next - walked) / len } else { 0.0 };
             out.push((s.point_at(t), s.tangent_at(t).perp()));
+            next += step;
+        }
+        walked += len;
+    }
+    if out.is_empty() {
+        if let Some(s) = segments.first() {
+            out.push((s.point_at(0.5), s.tangent_at(0.5).perp()));
         }
     }
     out

@@ -123,7 +123,7 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     }
     let safe = w.num(s.safe_z);
     w.line(&format!("G0 Z{safe}"));
-    w.at[2] = Some(safe);
+    w.at[2] = w.q(s.safe_z);
     w.line(&format!("M3 S{}", fmt_rate(s.spindle)));
     let mut from = path.start;
     for m in &path.moves {
@@ -168,12 +168,38 @@ fn fmt_rate(v: f64) -> String {
     t.to_string()
 }
 
+/// `v` with exactly `decimals` decimals, rounded half away from zero, never "-0.0000".
+fn fixed(v: f64, decimals: usize) -> String {
+    let mut out = String::new();
+    match quantize(v, decimals) {
+        Some(n) => push_fixed(&mut out, n, decimals),
+        None => out.push_str(&format!("{v:.decimals$}")),
+    }
+    out
+}
+
+/// `v` in units of the last printed decimal, when it fits.
+fn quantize(v: f64, decimals: usize) -> Option<i64> {
+    let scaled = (v * 10f64.powi(decimals as i32)).round();
+    (scaled.abs() < 9.0e15).then_some(scaled as i64)
+}
+
+/// Appends `n` (in units of the last decimal) with `decimals` decimals. Integer formatting:
+/// several times faster than `{:.4}` on programs of a million lines.
+fn push_fixed(out: &mut String, n: i64, decimals: usize) {
+    let unit = 10u64.pow(decimals as u32);
+    let a = n.unsigned_abs();
+    let sign = if n < 0 { "-" } else { "" };
+    let _ = write!(out, "{sign}{}.{:0decimals$}", a / unit, a % unit);
+}
+
 struct Writer {
     out: String,
+    /// Program units per millimetre.
     scale: f64,
     decimals: usize,
-    /// The last printed X, Y, Z (as printed, in program units).
-    at: [Option<String>; 3],
+    /// The last printed X, Y, Z, in units of the last printed decimal.
+    at: [Option<i64>; 3],
     feed: Option<String>,
 }
 
@@ -184,13 +210,17 @@ impl Writer {
     }
 
     fn num(&self, mm: f64) -> String {
-        let t = format!("{:.*}", self.decimals, mm * self.scale);
-        // No "-0.0000".
-        if t.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
-            t.trim_start_matches('-').to_string()
-        } else {
-            t
-        }
+        fixed(mm * self.scale, self.decimals)
+    }
+
+    /// A coordinate as it will be printed (None when too large to quantize).
+    fn q(&self, mm: f64) -> Option<i64> {
+        quantize(mm * self.scale, self.decimals)
+    }
+
+    /// A printed value back in millimetres.
+    fn mm(&self, n: i64) -> f64 {
+        n as f64 / 10f64.powi(self.decimals as i32) / self.scale
     }
 
     /// " F..." when the feed changes, else "".
@@ -204,26 +234,36 @@ impl Writer {
         }
     }
 
-    /// Writes a motion word with the coordinates that change (and `extra` words).
-    fn motion(&mut self, word: &str, to: Point3, ij: Option<(String, String)>, feed: &str) {
-        let mut l = word.to_string();
-        let coords = [("X", to.x), ("Y", to.y), ("Z", to.z)];
+    /// Writes a motion word with the coordinates that change, then I/J and the feed.
+    fn motion(&mut self, word: &str, to: Point3, ij: Option<(f64, f64)>, feed: &str) {
+        let line_start = self.out.len();
+        self.out.push_str(word);
         let mut moved = false;
-        for (k, (name, v)) in coords.iter().enumerate() {
-            let t = self.num(*v);
-            if self.at[k].as_deref() != Some(&t) {
-                let _ = write!(l, " {name}{t}");
-                self.at[k] = Some(t);
+        for (k, (name, v)) in [('X', to.x), ('Y', to.y), ('Z', to.z)].into_iter().enumerate() {
+            let n = self.q(v);
+            if n.is_none() || self.at[k] != n {
+                self.out.push(' ');
+                self.out.push(name);
+                match n {
+                    Some(n) => push_fixed(&mut self.out, n, self.decimals),
+                    None => {
+                        let t = self.num(v);
+                        self.out.push_str(&t);
+                    }
+                }
+                self.at[k] = n;
                 moved = true;
             }
         }
         if let Some((i, j)) = ij {
-            let _ = write!(l, " I{i} J{j}");
+            let (i, j) = (self.num(i), self.num(j));
+            let _ = write!(self.out, " I{i} J{j}");
         } else if !moved {
+            self.out.truncate(line_start);
             return;
         }
-        l.push_str(feed);
-        self.line(&l);
+        self.out.push_str(feed);
+        self.out.push('\n');
     }
 
     fn arc(&mut self, from: Point3, to: Point3, center: Point, sweep: f64, feed: &str) {
@@ -251,22 +291,19 @@ impl Writer {
     /// as an arc (its printed ends equal, or shorter than a thousandth of a millimetre).
     fn arc_piece(&mut self, from: Point3, to: Point3, center: Point, sweep: f64, feed: &str) {
         let radius = center.distance(from.xy());
-        let printed_from = [self.num(from.x), self.num(from.y)];
-        let printed_to = [self.num(to.x), self.num(to.y)];
-        if radius * sweep.abs() < 1e-3 || printed_from == printed_to {
+        let same_ends = self.q(from.x) == self.q(to.x) && self.q(from.y) == self.q(to.y);
+        if radius * sweep.abs() < 1e-3 || same_ends {
             self.motion("G1", to, None, feed);
             return;
         }
         // I and J from the point the controller starts at: the printed one.
-        let parse = |t: &str| t.parse::<f64>().unwrap_or(0.0) / self.scale;
-        let sx = self.at[0].as_deref().map_or(from.x, parse);
-        let sy = self.at[1].as_deref().map_or(from.y, parse);
-        let ij = (self.num(center.x - sx), self.num(center.y - sy));
+        let sx = self.at[0].map_or(from.x, |n| self.mm(n));
+        let sy = self.at[1].map_or(from.y, |n| self.mm(n));
         let word = if sweep > 0.0 { "G3" } else { "G2" };
         // Arc words always carry X and Y, so the controller never reads a full circle.
         self.at[0] = None;
         self.at[1] = None;
-        self.motion(word, to, Some(ij), feed);
+        self.motion(word, to, Some((center.x - sx, center.y - sy)), feed);
     }
 }
 
@@ -321,6 +358,16 @@ mod tests {
         assert!(g.contains("G20\n"));
         assert!(g.contains("G0 X0.39370 Y0.00000\n"), "{g}");
         assert!(g.contains("F47.244"), "{g}");
+    }
+
+    #[test]
+    fn fixed_decimals_round_and_never_print_minus_zero() {
+        assert_eq!(fixed(1.23456, 4), "1.2346");
+        assert_eq!(fixed(-0.00004, 4), "0.0000");
+        assert_eq!(fixed(-12.5, 4), "-12.5000");
+        assert_eq!(fixed(0.000051, 4), "0.0001");
+        assert_eq!(fixed(99999.99999, 4), "100000.0000");
+        assert_eq!(fixed(1e300, 4).len(), 306);
     }
 
     #[test]
