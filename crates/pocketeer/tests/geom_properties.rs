@@ -2,7 +2,7 @@
 
 use pocketeer::geom::{
     intersect, point_distance, segment_distance, signed_area, Arc, Intersection, Line, Point, Segment,
-    Tolerance, Vector,
+    SegmentIndex, Tolerance, Vector,
 };
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -215,6 +215,36 @@ proptest! {
                 continue;
             }
             prop_assert_eq!(pocketeer::geom::winding_number(&segs, p), polygon_winding(&poly, p), "at {:?}", p);
+        }
+    }
+}
+
+/// Short axis-aligned and slanted segments, many of them, like the floor moves of a program.
+fn short_segment() -> impl Strategy<Value = Segment> {
+    (point(), 0.0..8.0f64, 0..3u8).prop_map(|(a, len, kind)| {
+        let b = match kind {
+            0 => a + Vector::new(len, 0.0),
+            1 => a + Vector::new(0.0, len),
+            _ => a + Vector::new(0.6 * len, -0.8 * len),
+        };
+        Segment::Line(Line::new(a, b))
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// The index's nearest distance is the brute-force minimum (rstar's `nearest_neighbor`
+    /// alone misses it on some inputs).
+    #[test]
+    fn index_distance_is_the_brute_force_minimum(
+        segs in prop::collection::vec(prop_oneof![4 => short_segment(), 1 => arc()], 1..300),
+        queries in prop::collection::vec(point(), 1..40),
+    ) {
+        let index = SegmentIndex::new(&segs);
+        for q in queries {
+            let brute = segs.iter().map(|s| point_distance(s, q)).fold(f64::INFINITY, f64::min);
+            prop_assert!((index.distance(q) - brute).abs() <= 1e-9, "{} vs {}", index.distance(q), brute);
         }
     }
 }

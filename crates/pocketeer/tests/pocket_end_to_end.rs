@@ -168,3 +168,44 @@ fn bar_island_splits_the_pocket_and_both_sides_are_cleared() {
     let o = run(&[pocket], 4.0, 3.4, 6.0, Entry::Ramp, Dialect::Mach3);
     assert_clean(&o, 6.0);
 }
+
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A rectangle with up to four round islands that do not overlap each other or the wall.
+    fn pocket_strategy() -> impl Strategy<Value = Pocket> {
+        (
+            30.0..90.0f64,
+            25.0..60.0f64,
+            prop::collection::vec((0.05..0.95f64, 0.05..0.95f64, 1.0..8.0f64), 0..4),
+        )
+            .prop_map(|(w, h, islands)| {
+                let mut placed: Vec<(f64, f64, f64)> = Vec::new();
+                for (fx, fy, r) in islands {
+                    let (x, y) = (fx * w, fy * h);
+                    let clear_of_wall = x - r > 0.5 && y - r > 0.5 && w - x - r > 0.5 && h - y - r > 0.5;
+                    let clear_of_others = placed.iter().all(|&(a, b, s)| (x - a).hypot(y - b) > r + s + 0.5);
+                    if clear_of_wall && clear_of_others {
+                        placed.push((x, y, r));
+                    }
+                }
+                Pocket {
+                    boundary: rect(0.0, 0.0, w, h),
+                    islands: placed.iter().map(|&(x, y, r)| circle_cw(x, y, r)).collect(),
+                }
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+        /// Random pockets at random stepovers from 10 % to 90 %: no gouge, no leftover.
+        #[test]
+        fn random_pockets_are_cleared_cleanly(pocket in pocket_strategy(), percent in 10.0..90.0f64, d in 3.0..8.0f64) {
+            let o = run(std::slice::from_ref(&pocket), d, d * percent / 100.0, 1.0, Entry::Helix, Dialect::Grbl);
+            prop_assert!(o.gouge <= 0.01, "gouge {}", o.gouge);
+            prop_assert_eq!(o.leftover, 0, "{} of {} points left", o.leftover, o.tested);
+        }
+    }
+}

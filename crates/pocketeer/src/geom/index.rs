@@ -142,8 +142,12 @@ impl SegmentIndex {
 
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
+        // Not `nearest_neighbor`: its pruning by the boxes' min-max distance can miss the
+        // nearest segment (rstar issue #13, seen here on a pocket program); the iterator
+        // orders candidates by exact lower bounds.
         self.tree
-            .nearest_neighbor(&[p.x, p.y])
+            .nearest_neighbor_iter(&[p.x, p.y])
+            .next()
             .map_or(f64::INFINITY, |f| point_distance(&f.0, p))
     }
 }

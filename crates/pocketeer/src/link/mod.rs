@@ -358,3 +358,187 @@ fn nearest<T>(items: &[T], distance: impl Fn(&T) -> f64) -> usize {
     }
     best.0
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clear::{plan_pocket, ClearParams};
+    use crate::geom::{point_distance, Contour};
+    use crate::import::Pocket;
+    use crate::toolpath::Move;
+
+    fn params(entry: Entry) -> LinkParams {
+        LinkParams {
+            tool_radius: 3.0,
+            depth: 2.0,
+            step_down: 2.0,
+            safe_z: 5.0,
+            direction: Direction::Climb,
+            entry,
+            ramp_angle: 3f64.to_radians(),
+        }
+    }
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
+        let p = Point::new;
+        Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
+    }
+
+    fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, Region) {
+        let tol = Tolerance::default();
+        let clear = ClearParams {
+            tool_radius: 3.0,
+            stepover,
+            allowance: 0.0,
+        };
+        let plan = plan_pocket(pocket, &clear, &tol).unwrap();
+        let region = Region::new(pocket);
+        let l = link(&[(&region, &plan)], &params(entry), &tol);
+        (l, region)
+    }
+
+    /// Every feed move below the stock top keeps the tool centre at least the radius from the
+    /// walls (lines exactly, arcs by dense samples).
+    fn assert_no_gouge(path: &Toolpath, region: &Region) {
+        let tol = Tolerance::default();
+        let mut at = path.start;
+        for m in &path.moves {
+            let below = at.z.min(m.to().z) < 0.0;
+            match *m {
+                Move::Line { to, .. } if below => {
+                    let s = Segment::Line(crate::geom::Line::new(at.xy(), to.xy()));
+                    assert!(
+                        !region.segment_nearer_than(&s, 3.0 - 1e-6, &tol),
+                        "line to {to:?}"
+                    );
+                }
+                Move::Arc { center, sweep, .. } if below => {
+                    let v = at.xy() - center;
+                    for k in 0..=64 {
+                        let p = center
+                            + crate::geom::Vector::from_angle(v.angle() + sweep * k as f64 / 64.0)
+                                * v.length();
+                        assert!(
+                            region.distance(p) >= 3.0 - 1e-6 && region.contains(p),
+                            "arc at {p:?}"
+                        );
+                    }
+                }
+                Move::Rapid { to } => assert!(at.z >= 0.0 && to.z >= 0.0, "rapid below the top"),
+                _ => {}
+            }
+            at = m.to();
+        }
+    }
+
+    /// Largest descent angle (radians) of any move that goes down below the stock top.
+    fn steepest(path: &Toolpath) -> f64 {
+        let mut at = path.start;
+        let mut worst: f64 = 0.0;
+        for m in &path.moves {
+            let to = m.to();
+            if to.z < at.z && to.z < 0.0 && !matches!(m, Move::Rapid { .. }) {
+                let run = m.length(at).powi(2) - (at.z - to.z).powi(2);
+                let horizontal = run.max(0.0).sqrt();
+                // Above the floor of the previous pass the tool moves through air.
+                let dz = at.z.min(0.0) - to.z;
+                worst = worst.max(dz.atan2(horizontal));
+            }
+            at = to;
+        }
+        worst
+    }
+
+    #[test]
+    fn one_branch_is_cut_without_retracting_between_loops() {
+        let pocket = Pocket {
+            boundary: rect(0.0, 0.0, 40.0, 30.0),
+            islands: vec![],
+        };
+        let (l, region) = linked(&pocket, 2.4, Entry::Helix);
+        assert!(l.warnings.is_empty());
+        // Only the final retract.
+        assert_eq!(l.toolpath.stats().retracts, 1);
+        assert_no_gouge(&l.toolpath, &region);
+        assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
+        // The helix is an arc descending at the pass start.
+        assert!(l
+            .toolpath
+            .moves
+            .iter()
+            .any(|m| matches!(m, Move::Arc { to, .. } if to.z < 0.0 && to.z > -2.0)));
+    }
+
+    #[test]
+    fn branches_around_a_bar_island_are_entered_separately_and_never_crossed_at_depth() {
+        let bar = rect(10.0, 13.0, 50.0, 17.0).reversed();
+        let pocket = Pocket {
+            boundary: rect(0.0, 0.0, 60.0, 30.0),
+            islands: vec![bar],
+        };
+        let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+        assert!(l.toolpath.stats().retracts >= 2);
+        assert_no_gouge(&l.toolpath, &region);
+    }
+
+    #[test]
+    fn a_slot_too_narrow_for_a_helix_is_entered_by_a_ramp() {
+        let pocket = Pocket {
+            boundary: rect(0.0, 0.0, 40.0, 6.4),
+            islands: vec![],
+        };
+        let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+        assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+        assert!(!l.toolpath.moves.iter().any(|m| matches!(m, Move::Arc { .. })));
+        assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
+        assert_no_gouge(&l.toolpath, &region);
+    }
+
+    #[test]
+    fn a_pocket_barely_wider_than_the_tool_is_plunged_with_a_warning() {
+        let hole = Contour::new(vec![Segment::Arc(crate::geom::Arc::circle(
+            Point::new(0.0, 0.0),
+            3.05,
+        ))]);
+        let pocket = Pocket {
+            boundary: hole,
+            islands: vec![],
+        };
+        let (l, _) = linked(&pocket, 2.0, Entry::Helix);
+        assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
+        assert!(l.warnings[0].contains("plunging"));
+        let (l, _) = linked(&pocket, 2.0, Entry::Plunge);
+        assert!(l.warnings.is_empty());
+    }
+
+    #[test]
+    fn climb_goes_clockwise_along_the_wall() {
+        let pocket = Pocket {
+            boundary: rect(0.0, 0.0, 40.0, 30.0),
+            islands: vec![],
+        };
+        let (l, _) = linked(&pocket, 2.4, Entry::Helix);
+        // The last loop is the one at the wall (3 mm in); walk it and sum the turning.
+        let last: Vec<Point> = l
+            .toolpath
+            .moves
+            .iter()
+            .rev()
+            .filter(|m| matches!(m, Move::Line { .. }))
+            .map(|m| m.to().xy())
+            .filter(|p| {
+                let s = Segment::Line(crate::geom::Line::new(
+                    Point::new(3.0, 3.0),
+                    Point::new(37.0, 3.0),
+                ));
+                point_distance(&s, *p) < 1e-9
+                    || (p.x - 3.0).abs() < 1e-9
+                    || (p.x - 37.0).abs() < 1e-9
+                    || (p.y - 27.0).abs() < 1e-9
+            })
+            .take(5)
+            .collect();
+        let area = Contour::polygon(&last.iter().rev().copied().collect::<Vec<_>>()).signed_area();
+        assert!(area < 0.0, "clockwise expected, area {area}");
+    }
+}
