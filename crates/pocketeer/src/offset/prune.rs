@@ -110,21 +110,21 @@ fn runs(pieces: &[Piece]) -> Vec<usize> {
 /// two nodes: they bound no area (offsets of two walls exactly 2d apart coincide like this), and
 /// keeping them would make loops that run back over themselves.
 pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
-    let mut by_ends: std::collections::HashMap<(usize, usize), Vec<usize>> = std::collections::HashMap::new();
-    for (i, p) in pieces.iter().enumerate() {
-        by_ends.entry((p.start, p.end)).or_default().push(i);
-    }
+    // Pieces sorted by (start, end): the twins of a piece are the run keyed (end, start).
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_unstable_by_key(|&i| (pieces[i].start, pieces[i].end));
+    let key = |k: usize| (pieces[order[k]].start, pieces[order[k]].end);
     let mut gone = vec![false; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
-        if gone[i] {
+        if gone[i] || p.start == p.end {
             continue;
         }
+        let first = order.partition_point(|&j| (pieces[j].start, pieces[j].end) < (p.end, p.start));
         let mid = p.segment.point_at(0.5);
-        let twin = by_ends.get(&(p.end, p.start)).and_then(|v| {
-            v.iter().copied().find(|&j| {
-                !gone[j] && j != i && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps
-            })
-        });
+        let twin = (first..order.len())
+            .take_while(|&k| key(k) == (p.end, p.start))
+            .map(|k| order[k])
+            .find(|&j| !gone[j] && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps);
         if let Some(j) = twin {
             gone[i] = true;
             gone[j] = true;
@@ -141,23 +141,34 @@ pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
 /// ends at, or ending where no kept piece starts. Such stubs are left where an invalid piece
 /// came within rounding of being valid; a true offset is made of closed loops only.
 pub fn remove_dangling(pieces: Vec<Piece>) -> Vec<Piece> {
-    use std::collections::HashMap;
-    let mut ins: HashMap<usize, usize> = HashMap::new();
-    let mut outs: HashMap<usize, usize> = HashMap::new();
+    let nodes = node_count(&pieces);
+    let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
     for p in &pieces {
-        *outs.entry(p.start).or_default() += 1;
-        *ins.entry(p.end).or_default() += 1;
+        outs[p.start] += 1;
+        ins[p.end] += 1;
     }
-    let mut alive = vec![true; pieces.len()];
-    let mut by_start: HashMap<usize, Vec<usize>> = HashMap::new();
-    let mut by_end: HashMap<usize, Vec<usize>> = HashMap::new();
-    for (i, p) in pieces.iter().enumerate() {
-        by_start.entry(p.start).or_default().push(i);
-        by_end.entry(p.end).or_default().push(i);
-    }
-    let dangling = |p: &Piece, ins: &HashMap<usize, usize>, outs: &HashMap<usize, usize>| {
-        ins.get(&p.start).copied().unwrap_or(0) == 0 || outs.get(&p.end).copied().unwrap_or(0) == 0
+    // Pieces by start node and by end node, as offsets into one array each.
+    let by = |node_of: &dyn Fn(&Piece) -> usize| -> (Vec<usize>, Vec<usize>) {
+        let mut first = vec![0usize; nodes + 1];
+        for p in &pieces {
+            first[node_of(p) + 1] += 1;
+        }
+        for k in 0..nodes {
+            first[k + 1] += first[k];
+        }
+        let mut fill = first.clone();
+        let mut list = vec![0usize; pieces.len()];
+        for (i, p) in pieces.iter().enumerate() {
+            let n = node_of(p);
+            list[fill[n]] = i;
+            fill[n] += 1;
+        }
+        (first, list)
     };
+    let (start_first, by_start) = by(&|p| p.start);
+    let (end_first, by_end) = by(&|p| p.end);
+    let mut alive = vec![true; pieces.len()];
+    let dangling = |p: &Piece, ins: &[u32], outs: &[u32]| ins[p.start] == 0 || outs[p.end] == 0;
     let mut queue: Vec<usize> = (0..pieces.len())
         .filter(|&i| dangling(&pieces[i], &ins, &outs))
         .collect();
@@ -167,19 +178,12 @@ pub fn remove_dangling(pieces: Vec<Piece>) -> Vec<Piece> {
         }
         alive[i] = false;
         let p = &pieces[i];
-        if let Some(n) = outs.get_mut(&p.start) {
-            *n -= 1;
-        }
-        if let Some(n) = ins.get_mut(&p.end) {
-            *n -= 1;
-        }
+        outs[p.start] -= 1;
+        ins[p.end] -= 1;
         // Removing it may strand the pieces that led into its start or left from its end.
-        for &j in by_end
-            .get(&p.start)
-            .into_iter()
-            .flatten()
-            .chain(by_start.get(&p.end).into_iter().flatten())
-        {
+        let into_start = &by_end[end_first[p.start]..end_first[p.start + 1]];
+        let from_end = &by_start[start_first[p.end]..start_first[p.end + 1]];
+        for &j in into_start.iter().chain(from_end) {
             if alive[j] && dangling(&pieces[j], &ins, &outs) {
                 queue.push(j);
             }

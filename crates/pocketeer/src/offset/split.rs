@@ -18,7 +18,9 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
         .map(|p| p.segment.bbox().inflated(tol.eps))
         .collect();
     let index = BoxIndex::new(&boxes);
-    let mut cuts: Vec<Vec<Cut>> = vec![Vec::new(); pieces.len()];
+    // All cuts in one list, (piece, cut), sorted afterwards: far fewer allocations than a
+    // list per piece.
+    let mut cuts: Vec<(usize, Cut)> = Vec::new();
     let near_end = 10.0 * tol.eps;
     // The node for parameter t on piece i: its end node when t is at an end, else None.
     let end_node = |i: usize, t: f64| -> Option<usize> {
@@ -51,25 +53,30 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
                     (None, None) => nodes.add(),
                 };
                 if end_node(i, ta).is_none() {
-                    cuts[i].push((ta, node, p));
+                    cuts.push((i, (ta, node, p)));
                 }
                 if end_node(j, tb).is_none() {
-                    cuts[j].push((tb, node, p));
+                    cuts.push((j, (tb, node, p)));
                 }
             }
         }
     }
-    let mut out = Vec::with_capacity(pieces.len() * 2);
+    cuts.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1 .0.total_cmp(&b.1 .0)));
+    let mut out = Vec::with_capacity(pieces.len() + cuts.len());
+    let mut next = 0;
     for (i, piece) in pieces.iter().enumerate() {
-        let mut at = std::mem::take(&mut cuts[i]);
-        if at.is_empty() {
+        let first = next;
+        while next < cuts.len() && cuts[next].0 == i {
+            next += 1;
+        }
+        if first == next {
             out.push(*piece);
             continue;
         }
-        at.sort_by(|a, b| a.0.total_cmp(&b.0));
         let s = &piece.segment;
         let mut prev: Cut = (0.0, piece.start, s.start());
-        for cut in at.into_iter().chain(std::iter::once((1.0, piece.end, s.end()))) {
+        let at = cuts[first..next].iter().map(|c| c.1);
+        for cut in at.chain(std::iter::once((1.0, piece.end, s.end()))) {
             if (cut.0 - prev.0) * s.length() <= near_end {
                 // Two cuts at one place: one node.
                 nodes.union(prev.1, cut.1);
