@@ -3,9 +3,10 @@
 
 use super::{ClearError, ClearParams, MAX_LEVELS};
 use crate::geom::{Contour, Tolerance};
-use crate::offset::Region;
+use crate::offset::{Region, Sources};
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// Distances r, (r + allowance), r + allowance + k·stepover, ... up to the first one beyond
 /// `depth` (an upper bound of the distance from the walls to any point of the pocket).
@@ -28,27 +29,36 @@ pub fn level_distances(p: &ClearParams, depth: f64) -> Result<Vec<f64>, ClearErr
     Ok(out)
 }
 
-/// The loops at each of `distances` in turn, up to (not including) the first empty level.
-pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) -> Vec<Vec<Contour>> {
+/// One level's loops and the sources they came from.
+type Level = (Vec<Contour>, Arc<Sources>);
+
+/// The loops at each of `distances` in turn, up to (not including) the first empty level, with
+/// the sources of each level's loops. Each level is offset from the sources of the deepest
+/// level already done below it (see [`Region::offset_after`]).
+pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) -> Vec<Level> {
     let workers = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(distances.len());
     let next = AtomicUsize::new(0);
     // Index of the first empty level found so far: nothing at or beyond it is needed.
     let limit = AtomicUsize::new(distances.len());
-    let done: Mutex<Vec<(usize, Vec<Contour>)>> = Mutex::new(Vec::new());
+    let done: Mutex<BTreeMap<usize, Level>> = Mutex::new(BTreeMap::new());
     let work = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         if k >= limit.load(Ordering::Relaxed) {
             break;
         }
-        let loops = region.offset(distances[k], tol);
+        let smaller = done
+            .lock()
+            .ok()
+            .and_then(|d| d.range(..k).next_back().map(|(_, (_, s))| Arc::clone(s)));
+        let (loops, sources) = region.offset_after(distances[k], tol, smaller.as_deref());
         if loops.is_empty() {
             limit.fetch_min(k, Ordering::Relaxed);
             break;
         }
         if let Ok(mut d) = done.lock() {
-            d.push((k, loops));
+            d.insert(k, (loops, Arc::new(sources)));
         }
     };
     if workers <= 1 {
@@ -61,10 +71,11 @@ pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) 
         });
     }
     let limit = limit.into_inner();
-    let mut done = done.into_inner().unwrap_or_default();
-    done.retain(|(k, _)| *k < limit);
-    done.sort_by_key(|(k, _)| *k);
-    done.into_iter().map(|(_, l)| l).collect()
+    let done = done.into_inner().unwrap_or_default();
+    done.into_iter()
+        .filter(|(k, _)| *k < limit)
+        .map(|(_, v)| v)
+        .collect()
 }
 
 #[cfg(test)]

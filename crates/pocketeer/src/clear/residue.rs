@@ -16,10 +16,17 @@
 use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance, Vector};
-use crate::offset::Region;
+use crate::offset::{Region, Sources};
+use std::sync::Arc;
 
 /// Adds to each part of `plan` the clean-up paths for the gap below it.
-pub fn add_cleanups(plan: &mut ClearPlan, region: &Region, params: &ClearParams, tol: &Tolerance) {
+pub fn add_cleanups(
+    plan: &mut ClearPlan,
+    region: &Region,
+    sources: &[Arc<Sources>],
+    params: &ClearParams,
+    tol: &Tolerance,
+) {
     let r = params.tool_radius;
     let levels = plan.distances.len();
     let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels];
@@ -41,11 +48,14 @@ pub fn add_cleanups(plan: &mut ClearPlan, region: &Region, params: &ClearParams,
     if gaps.is_empty() {
         return;
     }
-    let half: Vec<f64> = gaps
+    let half: Vec<(f64, usize)> = gaps
         .iter()
-        .map(|&k| 0.5 * (plan.distances[k] + nominal(k)))
+        .map(|&k| (0.5 * (plan.distances[k] + nominal(k)), k))
         .collect();
-    let half_loops = parallel(&half, |d| region.offset(d, tol));
+    // Each half level from the sources of the level just outside it.
+    let half_loops = parallel(&half, |(d, k)| {
+        region.offset_after(d, tol, sources.get(k).map(|s| &**s)).0
+    });
     let loops_of = |k: usize| -> Vec<Segment> {
         by_level
             .get(k)
@@ -69,7 +79,7 @@ pub fn add_cleanups(plan: &mut ClearPlan, region: &Region, params: &ClearParams,
             below: SegmentIndex::new(&loops_of(k + 1)),
             next_distance: nominal(k),
             radius: r,
-            reach: nominal(k) - half[gi],
+            reach: nominal(k) - half[gi].0,
             slack: 0.1 * r,
         };
         for l in &half_loops[gi] {
@@ -85,7 +95,7 @@ pub fn add_cleanups(plan: &mut ClearPlan, region: &Region, params: &ClearParams,
 }
 
 /// `f` over `inputs` on every core, results in order.
-fn parallel<T: Send>(inputs: &[f64], f: impl Fn(f64) -> T + Sync) -> Vec<T> {
+fn parallel<T: Send>(inputs: &[(f64, usize)], f: impl Fn((f64, usize)) -> T + Sync) -> Vec<T> {
     let workers = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(inputs.len());

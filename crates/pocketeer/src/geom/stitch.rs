@@ -18,6 +18,9 @@ pub struct Piece {
     pub start: usize,
     /// Node at the end.
     pub end: usize,
+    /// What made the piece, as the caller numbers it (the offset stage: which original
+    /// element or joint); 0 when unused.
+    pub source: u32,
 }
 
 /// The closed loops the pieces form, and how many pieces could not be closed into one.
@@ -27,7 +30,7 @@ pub struct Piece {
 /// let p = |x, y| Point::new(x, y);
 /// let corners = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
 /// let pieces: Vec<Piece> = (0..4)
-///     .map(|k| Piece { segment: Segment::Line(Line::new(corners[k], corners[(k + 1) % 4])), start: k, end: (k + 1) % 4 })
+///     .map(|k| Piece { segment: Segment::Line(Line::new(corners[k], corners[(k + 1) % 4])), start: k, end: (k + 1) % 4, source: 0 })
 ///     .collect();
 /// let (loops, lost) = stitch(&pieces);
 /// assert_eq!((loops.len(), lost), (1, 0));

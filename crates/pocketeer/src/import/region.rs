@@ -393,6 +393,7 @@ fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
             segment,
             start: node[2 * i],
             end: node[2 * i + 1],
+            source: 0,
         })
         .collect();
     crate::geom::stitch(&pieces)

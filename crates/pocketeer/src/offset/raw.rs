@@ -8,12 +8,22 @@ use std::f64::consts::PI;
 /// on), as a closed ring of pieces whose node ids start at `next_node`; returns the pieces and
 /// the next free id.
 ///
+/// Each piece's `source` says what made it: `base + k` for the moved element k of the
+/// contour, `joints + base + k` for the joint at the end of element k (`base`: the index of
+/// the contour's first element among all elements offset together, `joints`: their count).
+///
 /// Consecutive moved elements share a node where they meet. Where they part (a turn to the
 /// right), an arc of radius d around the joint closes the gap; where they overlap (a turn to the
 /// left) or an element collapsed, a short line joins their ends, and the split stage cuts the
 /// overlap away. Every ring is closed, so a crossing missed by rounding at a nearly tangent
 /// joint cannot break a loop open.
-pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usize) -> (Vec<Piece>, usize) {
+pub fn raw_offset(
+    contour: &Contour,
+    d: f64,
+    tol: &Tolerance,
+    mut next_node: usize,
+    (base, joints): (usize, usize),
+) -> (Vec<Piece>, usize) {
     let segs = &contour.segments;
     // The moved elements that did not collapse, with the index of their original.
     let moved: Vec<(usize, Segment)> = segs
@@ -80,6 +90,7 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
                 segment: a,
                 start,
                 end: next_start,
+                source: (base + k) as u32,
             });
             continue;
         }
@@ -89,6 +100,7 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
             segment: a,
             start,
             end,
+            source: (base + k) as u32,
         });
         let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j]) {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
@@ -107,6 +119,7 @@ pub fn raw_offset(contour: &Contour, d: f64, tol: &Tolerance, mut next_node: usi
             segment: join,
             start: end,
             end: next_start,
+            source: (joints + base + k) as u32,
         });
     }
     (pieces, next_node)
@@ -157,7 +170,7 @@ mod tests {
                 .map(|k| Segment::Line(Line::new(c[k], c[(k + 1) % 4])))
                 .collect(),
         );
-        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0);
+        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, (0, 4));
         assert_eq!(pieces.len(), 8);
         assert_eq!(next, 8);
         assert!(pieces

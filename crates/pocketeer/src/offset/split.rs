@@ -86,6 +86,7 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
                 segment: between(s, prev, cut),
                 start: prev.1,
                 end: cut.1,
+                source: piece.source,
             });
             prev = cut;
         }
