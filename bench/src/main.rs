@@ -97,16 +97,13 @@ fn main() {
         let tol = Tolerance::for_extent(&p.boundary.bbox(), 0.001);
         // Both sides index their input once, outside the timing, as cavalier's Shape does.
         let region = pocketeer::offset::Region::new(&p);
+        // All levels in one call: on both cores, deeper levels from the sources of shallower.
         let (ours, our_area) = time(reps, || {
-            case.distances
+            region
+                .offset_levels(&case.distances, &tol)
                 .iter()
-                .map(|&d| {
-                    region
-                        .offset(d, &tol)
-                        .iter()
-                        .map(Contour::signed_area)
-                        .sum::<f64>()
-                })
+                .flatten()
+                .map(Contour::signed_area)
                 .sum::<f64>()
         });
         let s = shape(case);

@@ -22,7 +22,10 @@ fn drawing(n: usize) -> String {
     let contours: Vec<_> = std::iter::once(&pocket.boundary).chain(&pocket.islands).collect();
     let layered: Vec<LayeredContour> = contours
         .iter()
-        .map(|c| LayeredContour { layer: "0", contour: c })
+        .map(|c| LayeredContour {
+            layer: "0",
+            contour: c,
+        })
         .collect();
     write_dxf(&layered, Units::Millimeters)
 }
@@ -61,7 +64,11 @@ fn main() {
             let t0 = Instant::now();
             let analysis = pocketeer::analyze(text.as_bytes(), &ImportOptions::default()).expect("reads");
             let t1 = Instant::now();
-            let clear = ClearParams { tool_radius: 3.0, stepover: 2.4, allowance: 0.0 };
+            let clear = ClearParams {
+                tool_radius: 3.0,
+                stepover: 2.4,
+                allowance: 0.0,
+            };
             let link = LinkParams {
                 tool_radius: 3.0,
                 depth: 2.0,
@@ -73,11 +80,14 @@ fn main() {
             };
             let tol = &analysis.tolerance;
             let pockets = &analysis.regions.pockets;
-            let regions: Vec<pocketeer::offset::Region> = pockets.iter().map(pocketeer::offset::Region::new).collect();
+            let regions: Vec<pocketeer::offset::Region> =
+                pockets.iter().map(pocketeer::offset::Region::new).collect();
             let plans: Vec<_> = pockets
                 .iter()
                 .zip(&regions)
-                .map(|(p, r)| pocketeer::clear::plan_region(r, &p.boundary.bbox(), &clear, tol).expect("plans"))
+                .map(|(p, r)| {
+                    pocketeer::clear::plan_region(r, &p.boundary.bbox(), &clear, tol).expect("plans")
+                })
                 .collect();
             let t2 = Instant::now();
             let jobs: Vec<_> = regions.iter().zip(&plans).collect();

@@ -136,7 +136,7 @@ pub fn plan_region(
     // No point of the pocket is farther from its boundary than half its smaller extent.
     let depth = 0.5 * bbox.width().min(bbox.height());
     let distances = levels::level_distances(params, depth)?;
-    let (loops, sources): (Vec<_>, Vec<_>) = levels::offsets_until_empty(region, &distances, tol)
+    let (loops, sources): (Vec<_>, Vec<_>) = crate::offset::offsets_until_empty(region, &distances, tol)
         .into_iter()
         .unzip();
     let distances = distances[..loops.len()].to_vec();

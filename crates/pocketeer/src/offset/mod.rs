@@ -1,9 +1,12 @@
 //! Offsetting pockets and contours: the paper's raw offset → split → prune → stitch
 //! (`../shared/paper/summary.md` §3–§6), one stage per file.
 
+mod levels;
 mod prune;
 mod raw;
 mod split;
+
+pub(crate) use levels::offsets_until_empty;
 
 use crate::geom::{stitch, Contour, Piece, Point, Tolerance, WindingIndex};
 use crate::import::Pocket;
@@ -129,6 +132,29 @@ impl Region {
             tol,
             smaller,
         )
+    }
+}
+
+impl Region {
+    /// The region eroded by each of `distances` (increasing, positive), computed on every
+    /// core, up to the first distance where nothing is left; deeper levels offset only the
+    /// sources of a level already done (see [`Region::offset_after`]).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
+    /// use pocketeer::import::Pocket;
+    /// use pocketeer::offset::Region;
+    /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
+    /// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
+    /// let levels = region.offset_levels(&[2.0, 4.0, 6.0, 8.0, 10.0, 12.0], &Tolerance::default());
+    /// assert_eq!(levels.len(), 4);
+    /// assert!((levels[3][0].signed_area() - std::f64::consts::PI * 4.0).abs() < 1e-9);
+    /// ```
+    pub fn offset_levels(&self, distances: &[f64], tol: &Tolerance) -> Vec<Vec<Contour>> {
+        offsets_until_empty(self, distances, tol)
+            .into_iter()
+            .map(|(l, _)| l)
+            .collect()
     }
 }
 

@@ -1,7 +1,7 @@
 //! Breaking the raw offset (paper §5): every piece is cut where it meets another, found through
 //! a spatial index, so that afterwards no two pieces cross.
 
-use crate::geom::{intersect, Aabb, BoxIndex, Intersection, Line, Piece, Point, Segment, Tolerance};
+use crate::geom::{intersect, overlapping_pairs, Aabb, Intersection, Line, Piece, Point, Segment, Tolerance};
 use crate::union_find::UnionFind;
 
 /// Node ids, united where pieces meet.
@@ -17,7 +17,6 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
         .iter()
         .map(|p| p.segment.bbox().inflated(tol.eps))
         .collect();
-    let index = BoxIndex::new(&boxes);
     // All cuts in one list, (piece, cut), sorted afterwards: far fewer allocations than a
     // list per piece.
     let mut cuts: Vec<(usize, Cut)> = Vec::new();
@@ -33,7 +32,7 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
             None
         }
     };
-    for (i, j) in index.pairs() {
+    for (i, j) in overlapping_pairs(&boxes) {
         let hits = intersect(&pieces[i].segment, &pieces[j].segment, tol.eps);
         for h in hits.iter() {
             let meets: Vec<(f64, f64, Point)> = match h {

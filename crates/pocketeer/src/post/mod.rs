@@ -200,7 +200,8 @@ struct Writer {
     decimals: usize,
     /// The last printed X, Y, Z, in units of the last printed decimal.
     at: [Option<i64>; 3],
-    feed: Option<String>,
+    /// The feed last written, mm/min.
+    feed: Option<f64>,
 }
 
 impl Writer {
@@ -225,13 +226,11 @@ impl Writer {
 
     /// " F..." when the feed changes, else "".
     fn feed_word(&mut self, mm_per_min: f64) -> String {
-        let f = fmt_rate(mm_per_min * self.scale);
-        if self.feed.as_deref() == Some(&f) {
-            String::new()
-        } else {
-            self.feed = Some(f.clone());
-            format!(" F{f}")
+        if self.feed == Some(mm_per_min) {
+            return String::new();
         }
+        self.feed = Some(mm_per_min);
+        format!(" F{}", fmt_rate(mm_per_min * self.scale))
     }
 
     /// Writes a motion word with the coordinates that change, then I/J and the feed.
@@ -256,8 +255,16 @@ impl Writer {
             }
         }
         if let Some((i, j)) = ij {
-            let (i, j) = (self.num(i), self.num(j));
-            let _ = write!(self.out, " I{i} J{j}");
+            for (name, v) in [(" I", i), (" J", j)] {
+                self.out.push_str(name);
+                match self.q(v) {
+                    Some(n) => push_fixed(&mut self.out, n, self.decimals),
+                    None => {
+                        let t = self.num(v);
+                        self.out.push_str(&t);
+                    }
+                }
+            }
         } else if !moved {
             self.out.truncate(line_start);
             return;

@@ -1,0 +1,63 @@
+//! Many offsets of one region at once, on every core: each level is an offset of the original
+//! region, the deeper ones offsetting only the sources of one already done.
+
+use super::{Region, Sources};
+use crate::geom::{Contour, Tolerance};
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// One level's loops and the sources they came from.
+type Level = (Vec<Contour>, Arc<Sources>);
+
+/// The loops at each of `distances` in turn, up to (not including) the first empty level, with
+/// the sources of each level's loops. Each level is offset from the sources of the deepest
+/// level already done below it (see [`Region::offset_after`]).
+pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) -> Vec<Level> {
+    // Threads cost tens of microseconds to start: small jobs run on this one.
+    let elements: usize = region.contours.iter().map(|c| c.segments.len()).sum();
+    let workers = if elements * distances.len() < 20_000 {
+        1
+    } else {
+        std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .min(distances.len())
+    };
+    let next = AtomicUsize::new(0);
+    // Index of the first empty level found so far: nothing at or beyond it is needed.
+    let limit = AtomicUsize::new(distances.len());
+    let done: Mutex<BTreeMap<usize, Level>> = Mutex::new(BTreeMap::new());
+    let work = || loop {
+        let k = next.fetch_add(1, Ordering::Relaxed);
+        if k >= limit.load(Ordering::Relaxed) {
+            break;
+        }
+        let smaller = done
+            .lock()
+            .ok()
+            .and_then(|d| d.range(..k).next_back().map(|(_, (_, s))| Arc::clone(s)));
+        let (loops, sources) = region.offset_after(distances[k], tol, smaller.as_deref());
+        if loops.is_empty() {
+            limit.fetch_min(k, Ordering::Relaxed);
+            break;
+        }
+        if let Ok(mut d) = done.lock() {
+            d.insert(k, (loops, Arc::new(sources)));
+        }
+    };
+    if workers <= 1 {
+        work();
+    } else {
+        std::thread::scope(|s| {
+            for _ in 0..workers {
+                s.spawn(work);
+            }
+        });
+    }
+    let limit = limit.into_inner();
+    let done = done.into_inner().unwrap_or_default();
+    done.into_iter()
+        .filter(|(k, _)| *k < limit)
+        .map(|(_, v)| v)
+        .collect()
+}
