@@ -167,16 +167,13 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     } else {
         ProgramUnits::Millimetres
     };
+    // Short lines: some senders and controllers limit a line to 80 characters.
     let header = vec![
+        format!("pocketeer {}", env!("CARGO_PKG_VERSION")),
+        format!("drawing {}", file_name(&args.drawing.file)),
+        format!("tool diameter {} mm, stepover {:.4} mm", fmt(diameter), stepover),
         format!(
-            "pocketeer {} from {}",
-            env!("CARGO_PKG_VERSION"),
-            file_name(&args.drawing.file)
-        ),
-        format!(
-            "tool diameter {} mm, stepover {:.4} mm, depth {} mm, passes {passes}, allowance {} mm",
-            fmt(diameter),
-            stepover,
+            "depth {} mm in {passes} passes, allowance {} mm",
             fmt(depth),
             fmt(args.allowance)
         ),
@@ -187,11 +184,14 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
             fmt(args.spindle)
         ),
         format!(
-            "pockets {}, loops {loops}, cutting {:.1} mm, rapid {:.1} mm, retracts {}, time about {}",
+            "pockets {}, loops {loops}, retracts {}",
             analysis.regions.pockets.len(),
+            stats.retracts
+        ),
+        format!(
+            "cutting {:.1} mm, rapid {:.1} mm, time about {}",
             stats.cut_length + stats.plunge_length,
             stats.rapid_length,
-            stats.retracts,
             fmt_time(seconds)
         ),
     ];

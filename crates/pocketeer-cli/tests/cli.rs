@@ -223,3 +223,92 @@ fn pocket_refusals_name_the_problem_and_keep_the_old_program() {
         assert_eq!(std::fs::read_to_string(&nc).unwrap(), "(a good old program)\n");
     }
 }
+
+/// A DXF with closed or open LWPOLYLINEs on layer `parts`, and `$INSUNITS` = `units`.
+fn dxf(polylines: &[(&[(f64, f64)], bool)], circles: &[(f64, f64, f64)], units: i32) -> String {
+    let mut s =
+        format!("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n{units}\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
+    for (pts, closed) in polylines {
+        s += &format!(
+            "0\nLWPOLYLINE\n8\nparts\n90\n{}\n70\n{}\n",
+            pts.len(),
+            u8::from(*closed)
+        );
+        for (x, y) in pts.iter() {
+            s += &format!("10\n{x}\n20\n{y}\n");
+        }
+    }
+    for (x, y, r) in circles {
+        s += &format!("0\nCIRCLE\n8\nparts\n10\n{x}\n20\n{y}\n40\n{r}\n");
+    }
+    s + "0\nENDSEC\n0\nEOF\n"
+}
+
+#[test]
+fn an_inch_drawing_gives_an_inch_program() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawing = dir.path().join("plate.dxf");
+    let square: &[(f64, f64)] = &[(0.0, 0.0), (4.0, 0.0), (4.0, 3.0), (0.0, 3.0)];
+    std::fs::write(&drawing, dxf(&[(square, true)], &[(2.0, 1.5, 0.5)], 1)).unwrap();
+    let nc = dir.path().join("plate.nc");
+    let res = run(&[
+        "pocket",
+        drawing.to_str().unwrap(),
+        "--tool-diameter",
+        "0.25in",
+        "--stepover",
+        "40%",
+        "--depth",
+        "0.1in",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    assert!(res.status.success(), "{}", String::from_utf8_lossy(&res.stderr));
+    let g = std::fs::read_to_string(&nc).unwrap();
+    assert!(g.contains("\nG20\n"));
+    assert!(g.contains("Z-0.10000"), "the depth in inches");
+    // 1000 mm/min is 39.37 in/min; every X stays inside the 4 in plate, a tool radius in.
+    assert!(g.contains("F39.37"));
+    for x in g
+        .lines()
+        .filter_map(|l| l.split(' ').find_map(|w| w.strip_prefix('X')))
+    {
+        let x: f64 = x.parse().unwrap();
+        assert!((0.125 - 1e-4..=3.875 + 1e-4).contains(&x), "X{x}");
+    }
+}
+
+#[test]
+fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("keep.nc");
+    std::fs::write(&nc, "(keep me)\n").unwrap();
+    let open: &[(f64, f64)] = &[(0.0, 0.0), (50.0, 0.0), (50.0, 40.0), (0.0, 40.0), (0.0, 1.0)];
+    let eight: &[(f64, f64)] = &[(0.0, 0.0), (40.0, 30.0), (40.0, 0.0), (0.0, 30.0)];
+    let cases = [
+        (dxf(&[(open, false)], &[(25.0, 20.0, 5.0)], 4), "does not close"),
+        (dxf(&[(eight, true)], &[], 4), "crosses itself at (20"),
+    ];
+    for (i, (text, message)) in cases.iter().enumerate() {
+        let drawing = dir.path().join(format!("bad{i}.dxf"));
+        std::fs::write(&drawing, text).unwrap();
+        let res = run(&[
+            "pocket",
+            drawing.to_str().unwrap(),
+            "--tool-diameter",
+            "6",
+            "--stepover",
+            "2",
+            "--depth",
+            "1",
+            "-o",
+            nc.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&res.stderr);
+        assert_eq!(res.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(message), "{stderr}");
+        assert!(stderr.contains(&format!("bad{i}.dxf")), "{stderr}");
+        assert!(stderr.contains("layer 'parts'"), "{stderr}");
+        assert_eq!(std::fs::read_to_string(&nc).unwrap(), "(keep me)\n");
+    }
+}

@@ -301,3 +301,78 @@ fn a_circle_of_2000_segments() {
     );
     check_loops(&pocket, &loops, 5.0);
 }
+
+/// Area of the intersection of two discs (radii `r1`, `r2`, centres `c` apart).
+fn lens(r1: f64, r2: f64, c: f64) -> f64 {
+    let a1 = ((c * c + r1 * r1 - r2 * r2) / (2.0 * c * r1)).acos();
+    let a2 = ((c * c + r2 * r2 - r1 * r1) / (2.0 * c * r2)).acos();
+    let k = ((-c + r1 + r2) * (c + r1 - r2) * (c - r1 + r2) * (c + r1 + r2)).sqrt();
+    r1 * r1 * a1 + r2 * r2 * a2 - 0.5 * k
+}
+
+#[test]
+fn an_island_touching_the_wall_on_tangent_arcs() {
+    // A round pocket of four tangent quarter arcs, an island circle touching it inside.
+    let quarters: Vec<Segment> = (0..4)
+        .map(|k| {
+            Segment::Arc(Arc::new(
+                Point::new(0.0, 0.0),
+                50.0,
+                k as f64 * PI / 2.0,
+                PI / 2.0,
+            ))
+        })
+        .collect();
+    let pocket = Pocket {
+        boundary: Contour::new(quarters),
+        islands: vec![circle_cw(40.0, 0.0, 10.0)],
+    };
+    let d = 3.0;
+    let loops = offset_pocket(&pocket, d, &Tolerance::default());
+    check_loops(&pocket, &loops, d);
+    // The disc of radius 47 less the island grown to 13.
+    let expected = PI * 47.0 * 47.0 - lens(47.0, 13.0, 40.0);
+    assert_eq!(
+        loops.len(),
+        1,
+        "one loop around both: the island offset cuts into the wall offset"
+    );
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        area(&loops)
+    );
+}
+
+#[test]
+fn an_island_crossing_the_wall_read_from_a_drawing() {
+    // A 100 x 60 rectangle drawn as lines, a circle centred on its right wall: the region is the
+    // rectangle less the half disc, and its offset by 3 the rectangle shrunk by 3 less the disc
+    // grown to 13 (a circular segment of it, 3 from its centre, lies inside).
+    let mut text = String::from("0\nSECTION\n2\nENTITIES\n");
+    let corners = [(0.0, 0.0), (100.0, 0.0), (100.0, 60.0), (0.0, 60.0)];
+    for k in 0..4 {
+        let ((x0, y0), (x1, y1)) = (corners[k], corners[(k + 1) % 4]);
+        text += &format!("0\nLINE\n8\n0\n10\n{x0}\n20\n{y0}\n11\n{x1}\n21\n{y1}\n");
+    }
+    text += "0\nCIRCLE\n8\n0\n10\n100\n20\n30\n40\n10\n0\nENDSEC\n0\nEOF\n";
+    let analysis = pocketeer::analyze(text.as_bytes(), &Default::default()).unwrap();
+    assert_eq!(analysis.regions.pockets.len(), 1);
+    let pocket = &analysis.regions.pockets[0];
+    assert!(
+        (pocket.area() - (6000.0 - PI * 50.0)).abs() < 1e-6,
+        "{}",
+        pocket.area()
+    );
+    let loops = offset_pocket(pocket, 3.0, &Tolerance::default());
+    check_loops(pocket, &loops, 3.0);
+    let (r, h) = (13.0f64, 3.0f64);
+    let segment = r * r * (h / r).acos() - h * (r * r - h * h).sqrt();
+    let expected = 94.0 * 54.0 - segment;
+    assert_eq!(loops.len(), 1);
+    assert!(
+        (area(&loops) - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        area(&loops)
+    );
+}

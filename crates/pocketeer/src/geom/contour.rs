@@ -108,14 +108,17 @@ fn ray_crossing(a: Point, b: Point, p: Point, x_at: impl Fn(f64) -> f64) -> i32 
     }
 }
 
-/// Winding contribution of one segment around `p` (the signed crossings of a ray to +x).
-fn crossings(seg: &Segment, p: Point) -> i32 {
+/// Winding contribution of one segment around `p` (the signed crossings of a ray to +x),
+/// the segment taken to start at `from`: the end of the segment before it in the chain. A
+/// chain closes only up to rounding (a quarter arc ends 1e-14 from where the next begins), and
+/// a ray passing through that gap would cross neither; with shared joints it crosses one.
+fn crossings(seg: &Segment, from: Point, p: Point) -> i32 {
     let b = seg.bbox();
-    if p.y < b.min.y || p.y > b.max.y || p.x >= b.max.x {
+    if p.y < b.min.y.min(from.y) || p.y > b.max.y.max(from.y) || p.x >= b.max.x.max(from.x) {
         return 0;
     }
     match seg {
-        Segment::Line(l) => ray_crossing(l.start, l.end, p, |y| {
+        Segment::Line(l) => ray_crossing(from, l.end, p, |y| {
             let (a, d) = (l.start, l.end - l.start);
             a.x + (y - a.y) * d.x / d.y
         }),
@@ -137,7 +140,8 @@ fn crossings(seg: &Segment, p: Point) -> i32 {
             cuts.push(1.0);
             let mut total = 0;
             for w in cuts.windows(2) {
-                let (q0, q1) = (arc.point_at(w[0]), arc.point_at(w[1]));
+                let q0 = if w[0] == 0.0 { from } else { arc.point_at(w[0]) };
+                let q1 = arc.point_at(w[1]);
                 let right = arc.angle_at(0.5 * (w[0] + w[1])).cos() > 0.0;
                 total += ray_crossing(q0, q1, p, |y| {
                     let dy = y - arc.center.y;
@@ -156,7 +160,14 @@ fn crossings(seg: &Segment, p: Point) -> i32 {
 
 /// Winding number of closed chain `segments` around `p` (for `p` not on the chain).
 pub fn winding_number(segments: &[Segment], p: Point) -> i32 {
-    segments.iter().map(|s| crossings(s, p)).sum()
+    let Some(last) = segments.last() else { return 0 };
+    let mut from = last.end();
+    let mut total = 0;
+    for s in segments {
+        total += crossings(s, from, p);
+        from = s.end();
+    }
+    total
 }
 
 /// Winding numbers of one closed chain around many points, faster than a scan of every
@@ -186,6 +197,9 @@ impl WindingIndex {
     pub fn new(segments: &[Segment]) -> WindingIndex {
         let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
+        // Each segment also answers for the rounding gap to the end of the one before it.
+        let slack = 1e-9 * all.width().max(all.height()).max(1.0);
+        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(slack)).collect();
         let n = segments.len();
         let height = all.height();
         if n == 0 || height.is_nan() || height <= 0.0 {
@@ -235,7 +249,14 @@ impl WindingIndex {
             return 0;
         }
         let strip = &self.strips[(s as usize).min(self.strips.len() - 1)];
-        strip.iter().map(|&i| crossings(&segments[i as usize], p)).sum()
+        let n = segments.len();
+        strip
+            .iter()
+            .map(|&i| {
+                let i = i as usize;
+                crossings(&segments[i], segments[(i + n - 1) % n].end(), p)
+            })
+            .sum()
     }
 }
 
@@ -254,6 +275,31 @@ mod tests {
             Segment::Line(Line::new(p(10.0, 4.0), p(0.0, 4.0))),
             Segment::Line(Line::new(p(0.0, 4.0), p(0.0, 0.0))),
         ])
+    }
+
+    #[test]
+    fn a_ray_through_a_joint_that_closes_only_up_to_rounding_crosses_once() {
+        // Four quarter arcs: each ends 1e-14 or so from where the next begins.
+        let quarters = Contour::new(
+            (0..4)
+                .map(|k| {
+                    Segment::Arc(Arc::new(
+                        Point::new(0.0, 0.0),
+                        50.0,
+                        k as f64 * PI / 2.0,
+                        PI / 2.0,
+                    ))
+                })
+                .collect(),
+        );
+        for y in [-1.6e-15, 0.0, 1e-15, -1e-14, 3e-15] {
+            let p = Point::new(17.0, y);
+            assert_eq!(quarters.winding_number(p), 1, "at y = {y}");
+            assert_eq!(
+                WindingIndex::new(&quarters.segments).winding(&quarters.segments, p),
+                1
+            );
+        }
     }
 
     #[test]

@@ -39,35 +39,47 @@ pub struct Piece {
 pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
     // Node ids are small integers (indices of some list): a vector indexed by them.
     let nodes = pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0);
-    let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); nodes];
+    // The pieces leaving each node: `by_start[first[n]..first[n + 1]]` (one array, not a list
+    // per node: node ids may run far beyond the number of pieces).
+    let mut first = vec![0usize; nodes + 1];
+    for p in pieces {
+        first[p.start + 1] += 1;
+    }
+    for n in 0..nodes {
+        first[n + 1] += first[n];
+    }
+    let mut fill = first.clone();
+    let mut by_start = vec![0usize; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
-        leaving[p.start].push(i);
+        by_start[fill[p.start]] = i;
+        fill[p.start] += 1;
     }
     let mut used = vec![false; pieces.len()];
     let mut loops = Vec::new();
     let mut lost = 0;
-    for first in 0..pieces.len() {
-        if used[first] {
+    for start in 0..pieces.len() {
+        if used[start] {
             continue;
         }
-        used[first] = true;
-        let mut chain = vec![first];
+        used[start] = true;
+        let mut chain = vec![start];
         loop {
             let last = &pieces[chain[chain.len() - 1]];
             let incoming = last.segment.tangent_at(1.0);
-            let options = leaving[last.end].as_slice();
+            let options = &by_start[first[last.end]..first[last.end + 1]];
             // The first piece is a candidate too: taking it closes the loop.
-            let next = options
-                .iter()
-                .copied()
-                .filter(|&i| !used[i] || i == first)
-                .max_by(|&a, &b| {
+            let mut open = options.iter().copied().filter(|&i| !used[i] || i == start);
+            let next = if options.len() == 1 {
+                open.next()
+            } else {
+                open.max_by(|&a, &b| {
                     turn_key(incoming, &pieces[a].segment)
                         .partial_cmp(&turn_key(incoming, &pieces[b].segment))
                         .unwrap_or(std::cmp::Ordering::Equal)
-                });
+                })
+            };
             match next {
-                Some(i) if i == first => {
+                Some(i) if i == start => {
                     loops.push(Contour::new(chain.iter().map(|&k| pieces[k].segment).collect()));
                     break;
                 }

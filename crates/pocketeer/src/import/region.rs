@@ -289,10 +289,12 @@ fn nesting_levels(
 }
 
 /// True when at least half of `inner`'s length (sampled, ignoring points on `outer`) lies
-/// inside `outer`.
+/// inside `outer`. An even number of samples, so that a circle centred on a straight wall ties
+/// and counts as an island crossing the wall (a relief meant to extend the pocket lies mostly
+/// outside it).
 fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Tolerance) -> bool {
     let (mut inside, mut outside) = (0, 0);
-    for p in samples(inner, 15) {
+    for p in samples(inner, 64) {
         if locator.contours[outer]
             .segments
             .iter()
