@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::replay::{measure, read};
+use common::replay::{measure, read, Target};
 use pocketeer::clear::ClearParams;
 use pocketeer::geom::{Contour, Point, Segment, Tolerance};
 use pocketeer::import::Pocket;
@@ -56,38 +56,49 @@ fn run(
     };
     let program = write_gcode(&job.linked.toolpath, &settings, dialect);
     let moves = read(&program).expect("the program reads back");
-    let mut out = Outcome {
-        gouge: 0.0,
-        leftover: 0,
-        tested: 0,
-        deepest: 0.0,
-        rapids_below_top: 0,
-        warnings: job.linked.warnings.clone(),
-    };
-    for p in pockets {
-        let region = Region::new(p);
-        let walls: Vec<Segment> = std::iter::once(&p.boundary)
-            .chain(&p.islands)
-            .flat_map(|c| c.segments.iter().copied())
-            .collect();
-        let centres: Vec<Segment> = offset_pocket(p, r, &tol)
-            .iter()
-            .flat_map(|c| c.segments.iter().copied())
-            .collect();
-        let m = measure(&moves, &region, &walls, &centres, r, -depth, 0.2, 0.01);
-        out.gouge = out.gouge.max(m.gouge);
-        out.leftover += m.leftover_points.len();
-        if !m.leftover_points.is_empty() {
-            eprintln!(
-                "leftover at {:?}",
-                &m.leftover_points[..m.leftover_points.len().min(5)]
-            );
-        }
-        out.tested += m.tested;
-        out.deepest = m.deepest;
-        out.rapids_below_top = m.rapids_below_top;
+    let prepared: Vec<(Region, Vec<Segment>, Vec<Segment>)> = pockets
+        .iter()
+        .map(|p| {
+            let walls = std::iter::once(&p.boundary)
+                .chain(&p.islands)
+                .flat_map(|c| c.segments.iter().copied())
+                .collect();
+            let centres = offset_pocket(p, r, &tol)
+                .iter()
+                .flat_map(|c| c.segments.iter().copied())
+                .collect();
+            (Region::new(p), walls, centres)
+        })
+        .collect();
+    let targets: Vec<Target> = prepared
+        .iter()
+        .map(|(region, walls, centres)| Target {
+            region,
+            walls,
+            centres,
+        })
+        .collect();
+    // A 0.2 mm grid, coarser on large drawings (at most about four million points).
+    let area: f64 = pockets
+        .iter()
+        .map(|p| p.boundary.bbox().width() * p.boundary.bbox().height())
+        .sum();
+    let h = (area / 4e6).sqrt().max(0.2);
+    let m = measure(&moves, &targets, r, -depth, h, 0.01);
+    if !m.leftover_points.is_empty() {
+        eprintln!(
+            "leftover at {:?}",
+            &m.leftover_points[..m.leftover_points.len().min(5)]
+        );
     }
-    out
+    Outcome {
+        gouge: m.gouge,
+        leftover: m.leftover_points.len(),
+        tested: m.tested,
+        deepest: m.deepest,
+        rapids_below_top: m.rapids_below_top,
+        warnings: job.linked.warnings.clone(),
+    }
 }
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
@@ -208,4 +219,80 @@ mod random {
             prop_assert_eq!(o.leftover, 0, "{} of {} points left", o.leftover, o.tested);
         }
     }
+}
+
+/// Every drawing of a corpus folder that imports is pocketed at 40 % and 83 % with a 3 mm tool
+/// and measured like the tests above. Ignored: it needs the folder, named by the
+/// `POCKETEER_CORPUS` environment variable, and takes a minute:
+/// `POCKETEER_CORPUS=path/to/corpus cargo test -p pocketeer --test pocket_end_to_end -- --ignored`
+#[test]
+#[ignore]
+fn corpus_drawings_are_cleared_cleanly() {
+    let Some(root) = std::env::var_os("POCKETEER_CORPUS") else {
+        eprintln!("POCKETEER_CORPUS is not set: nothing to do");
+        return;
+    };
+    let mut files = Vec::new();
+    let mut dirs = vec![std::path::PathBuf::from(root)];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).expect("corpus folder").flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf")) {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    let mut bad = Vec::new();
+    for f in &files {
+        let Ok(analysis) = pocketeer::analyze(&std::fs::read(f).unwrap(), &Default::default()) else {
+            continue;
+        };
+        for percent in [40.0, 83.0] {
+            let pockets = &analysis.regions.pockets;
+            let fits = pocketeer::job::pocket_job(
+                pockets,
+                &ClearParams {
+                    tool_radius: 1.5,
+                    stepover: 3.0 * percent / 100.0,
+                    allowance: 0.0,
+                },
+                &LinkParams {
+                    tool_radius: 1.5,
+                    depth: 1.0,
+                    step_down: 3.0,
+                    safe_z: 5.0,
+                    direction: Direction::Climb,
+                    entry: Entry::Helix,
+                    ramp_angle: 3f64.to_radians(),
+                },
+                &analysis.tolerance,
+            )
+            .is_ok();
+            if !fits {
+                continue;
+            }
+            let o = run(
+                pockets,
+                3.0,
+                3.0 * percent / 100.0,
+                1.0,
+                Entry::Helix,
+                Dialect::Grbl,
+            );
+            eprintln!(
+                "{} at {percent}%: gouge {:.4}, {} of {} points left",
+                f.display(),
+                o.gouge,
+                o.leftover,
+                o.tested
+            );
+            if o.gouge > 0.01 || o.leftover > 0 {
+                bad.push(format!("{} at {percent}%", f.display()));
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{bad:?}");
 }

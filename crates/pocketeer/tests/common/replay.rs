@@ -123,21 +123,20 @@ pub struct Measured {
     pub deepest: f64,
 }
 
-/// Replays `moves` for a tool of radius `r` over `region` whose walls are `walls`; leftover is
-/// tested on a grid of step `h`: points of the region at least `r` from every wall, or within
-/// `r - slack` of the loops `centres` bounding those points (the region eroded by r), are
-/// reachable, and each must lie within `r + slack` of a cut at `depth`.
-#[allow(clippy::too_many_arguments)]
-pub fn measure(
-    moves: &[Read],
-    region: &Region,
-    walls: &[Segment],
-    centres: &[Segment],
-    r: f64,
-    depth: f64,
-    h: f64,
-    slack: f64,
-) -> Measured {
+/// One pocket as the replay sees it: its region, its walls and islands, and the loops of the
+/// region eroded by the tool radius (the boundary of where the tool centre may go).
+pub struct Target<'a> {
+    pub region: &'a Region,
+    pub walls: &'a [Segment],
+    pub centres: &'a [Segment],
+}
+
+/// Replays `moves` for a tool of radius `r` over the pockets `targets`. Gouge: how far the tool
+/// disc of a feed move below Z=0 reaches outside the pocket it is in (the pocket that makes
+/// this smallest). Leftover is tested on a grid of step `h`: points of a pocket at least `r`
+/// from every wall, or within `r - slack` of its `centres`, are reachable, and each must lie
+/// within `r + slack` of a cut at `depth`.
+pub fn measure(moves: &[Read], targets: &[Target], r: f64, depth: f64, h: f64, slack: f64) -> Measured {
     let tol = Tolerance::default();
     let mut m = Measured {
         gouge: 0.0,
@@ -147,7 +146,7 @@ pub fn measure(
         rapids_below_top: 0,
         deepest: 0.0,
     };
-    let wall_index = SegmentIndex::new(walls);
+    let wall_indexes: Vec<SegmentIndex> = targets.iter().map(|t| SegmentIndex::new(t.walls)).collect();
     let mut floor: Vec<Segment> = Vec::new();
     for mv in moves {
         m.deepest = m.deepest.min(mv.z1);
@@ -158,14 +157,23 @@ pub fn measure(
             continue;
         }
         if mv.z0.min(mv.z1) < -1e-9 {
-            // Exact nearest distance from the centre path to the walls, and inside the region.
-            let mut worst = f64::INFINITY;
-            for w in walls {
-                worst = worst.min(pocketeer::geom::segment_distance(w, &mv.segment, tol.eps).0);
+            let mut gouge = f64::INFINITY;
+            for (t, index) in targets.iter().zip(&wall_indexes) {
+                // Exact nearest distance from the centre path to the walls, and inside or not.
+                let b = mv.segment.bbox();
+                let mid = mv.segment.point_at(0.5);
+                let near = index.distance(mid);
+                // Walls farther than the tool from every point of the move cannot decide.
+                let reach = near + 0.5 * b.width().hypot(b.height()) + r;
+                let worst = t
+                    .walls
+                    .iter()
+                    .filter(|w| w.bbox().inflated(reach).contains(mid))
+                    .map(|w| pocketeer::geom::segment_distance(w, &mv.segment, tol.eps).0)
+                    .fold(f64::INFINITY, f64::min);
+                let inside = t.region.contains(mid) || near < 1e-6;
+                gouge = gouge.min(if inside { r - worst } else { r + worst });
             }
-            let mid = mv.segment.point_at(0.5);
-            let inside = region.contains(mid) || wall_index.distance(mid) < 1e-6;
-            let gouge = if inside { r - worst } else { r + worst };
             if gouge > m.gouge {
                 m.gouge = gouge;
                 m.gouge_line = mv.line;
@@ -176,23 +184,28 @@ pub fn measure(
         }
     }
     let cut_index = SegmentIndex::new(&floor);
-    let centre_index = SegmentIndex::new(centres);
-    let bbox = walls
-        .iter()
-        .fold(pocketeer::geom::Aabb::EMPTY, |b, s| b.union(&s.bbox()));
-    let (nx, ny) = (
-        (bbox.width() / h).ceil() as usize,
-        (bbox.height() / h).ceil() as usize,
-    );
-    for i in 0..=nx {
-        for j in 0..=ny {
-            let p = Point::new(bbox.min.x + i as f64 * h, bbox.min.y + j as f64 * h);
-            if !region.contains(p) || !(region.distance(p) >= r || centre_index.any_within(p, r - slack)) {
-                continue;
-            }
-            m.tested += 1;
-            if cut_index.distance(p) > r + slack {
-                m.leftover_points.push(p);
+    for t in targets {
+        let centre_index = SegmentIndex::new(t.centres);
+        let bbox = t
+            .walls
+            .iter()
+            .fold(pocketeer::geom::Aabb::EMPTY, |b, s| b.union(&s.bbox()));
+        let (nx, ny) = (
+            (bbox.width() / h).ceil() as usize,
+            (bbox.height() / h).ceil() as usize,
+        );
+        for i in 0..=nx {
+            for j in 0..=ny {
+                let p = Point::new(bbox.min.x + i as f64 * h, bbox.min.y + j as f64 * h);
+                if !t.region.contains(p)
+                    || !(t.region.distance(p) >= r || centre_index.any_within(p, r - slack))
+                {
+                    continue;
+                }
+                m.tested += 1;
+                if cut_index.distance(p) > r + slack {
+                    m.leftover_points.push(p);
+                }
             }
         }
     }
