@@ -296,3 +296,23 @@ fn corpus_drawings_are_cleared_cleanly() {
     }
     assert!(bad.is_empty(), "{bad:?}");
 }
+
+/// The example the README's first command pockets, read from its DXF file, at a stepover at
+/// the radius and one at 85 %, in two depth passes.
+#[test]
+fn the_bracket_example_is_cleared_cleanly() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/bracket.dxf");
+    let analysis = pocketeer::analyze(&std::fs::read(path).unwrap(), &Default::default()).unwrap();
+    for stepover in [3.0, 5.1] {
+        let o = run(
+            &analysis.regions.pockets,
+            6.0,
+            stepover,
+            8.0,
+            Entry::Helix,
+            Dialect::Grbl,
+        );
+        assert_clean(&o, 8.0);
+        assert!(o.warnings.is_empty(), "{:?}", o.warnings);
+    }
+}
