@@ -1,5 +1,6 @@
 //! The `pocketeer` command: a thin layer of argument parsing and messages over the library.
 
+mod check;
 mod length;
 mod output;
 mod pocket;
@@ -27,6 +28,8 @@ enum Command {
     Offset(OffsetArgs),
     /// Clear every pocket of a drawing and write the G-code program.
     Pocket(pocket::PocketArgs),
+    /// Replay a G-code program against its drawing: gouge, leftover, rapids, plunges, time.
+    Check(check::CheckArgs),
 }
 
 /// How to read a drawing (shared by every command that reads one).
@@ -174,6 +177,12 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect(args),
         Command::Offset(args) => offset(args),
         Command::Pocket(args) => pocket::run(args),
+        Command::Check(args) => match check::run(args) {
+            Ok(check::Verdict::Passed) => Ok(()),
+            // Defects found: the report says which; exit 1 (2 is for errors).
+            Ok(check::Verdict::Failed) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

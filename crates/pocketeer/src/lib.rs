@@ -15,6 +15,7 @@ pub mod job;
 pub mod link;
 pub mod offset;
 pub mod post;
+pub mod simulate;
 pub mod toolpath;
 mod union_find;
 

@@ -186,6 +186,24 @@ impl SegmentIndex {
             .any(|f| segment_distance(&f.0, s, eps).0 < r)
     }
 
+    /// The nearest segment to the segment `s` if one is nearer than `limit`: the distance and
+    /// the nearest point on `s`.
+    pub fn nearest_to_segment(&self, s: &Segment, limit: f64, eps: f64) -> Option<(f64, Point)> {
+        let b = s.bbox();
+        let query = AABB::from_corners(
+            [b.min.x - limit, b.min.y - limit],
+            [b.max.x + limit, b.max.y + limit],
+        );
+        self.tree
+            .locate_in_envelope_intersecting(&query)
+            .map(|f| {
+                let (d, on_s, _) = segment_distance(s, &f.0, eps);
+                (d, on_s)
+            })
+            .filter(|(d, _)| *d < limit)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
         // Not `nearest_neighbor`: its pruning by the boxes' min-max distance can miss the

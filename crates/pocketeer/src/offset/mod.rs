@@ -43,6 +43,13 @@ impl Region {
         Region::from_contours(contours)
     }
 
+    /// Prepares the region on the left of `loops` (counter-clockwise around material,
+    /// clockwise around holes), such as the loops of an offset: offsetting it by a negative
+    /// distance dilates them.
+    pub fn from_loops(loops: &[Contour]) -> Region {
+        Region::from_contours(loops.to_vec())
+    }
+
     fn from_contours(contours: Vec<Contour>) -> Region {
         let reversed = contours.iter().map(Contour::reversed).collect();
         let profile = Profile::new(&contours);

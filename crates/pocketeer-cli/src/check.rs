@@ -1,0 +1,186 @@
+//! `pocketeer check`: a program replayed against its drawing.
+
+use crate::length::{parse_length, parse_nonneg_length};
+use crate::{emit, output, read_analysis, DrawingArgs, Failure};
+use clap::Args;
+use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
+use std::fmt::Write;
+use std::path::PathBuf;
+
+#[derive(Args)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    drawing: DrawingArgs,
+    /// The G-code program to check.
+    program: PathBuf,
+    /// Tool diameter (6, 6mm, 0.25in).
+    #[arg(long, value_parser = parse_length)]
+    tool_diameter: f64,
+    /// Depth of the pocket below Z=0 [default: the deepest Z of the program].
+    #[arg(long, value_parser = parse_length)]
+    depth: Option<f64>,
+    /// Largest gouge accepted.
+    #[arg(long, default_value = "0.01", value_parser = parse_nonneg_length)]
+    gouge_tolerance: f64,
+    /// Thickest leftover accepted.
+    #[arg(long, default_value = "0.05", value_parser = parse_nonneg_length)]
+    leftover_tolerance: f64,
+    /// Print the report as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Also draw the pockets, the swept area and the leftover in this SVG file.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+/// The outcome: the report passed (exit 0) or found defects (exit 1).
+pub enum Verdict {
+    Passed,
+    Failed,
+}
+
+pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
+    if !(args.tool_diameter.is_finite() && args.tool_diameter > 0.0) {
+        return Err(Failure(format!(
+            "tool-diameter must be positive (got {})",
+            args.tool_diameter
+        )));
+    }
+    let analysis = read_analysis(&args.drawing)?;
+    let name = args.program.display();
+    let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
+    let text = String::from_utf8_lossy(&text);
+    let program = read_program(&text).map_err(|e| Failure(format!("{name}: {e}")))?;
+    let params = CheckParams {
+        tool_radius: 0.5 * args.tool_diameter,
+        depth: args.depth,
+        gouge_tolerance: args.gouge_tolerance,
+        leftover_tolerance: args.leftover_tolerance,
+    };
+    let report = check_program(&analysis.regions.pockets, &program, &params, &analysis.tolerance);
+    if let Some(path) = &args.svg {
+        output::write_atomic(path, preview(&analysis, &report).as_bytes()).map_err(Failure)?;
+    }
+    let text = if args.json {
+        let mut t =
+            serde_json::to_string_pretty(&report).map_err(|e| Failure(format!("cannot write JSON: {e}")))?;
+        t.push('\n');
+        t
+    } else {
+        to_text(&report, &params)
+    };
+    emit(&text)?;
+    Ok(if report.passed {
+        Verdict::Passed
+    } else {
+        Verdict::Failed
+    })
+}
+
+fn place(p: &Option<pocketeer::simulate::check::Place>) -> String {
+    match p {
+        Some(p) if p.line > 0 => format!(" at ({:.3}, {:.3}), line {}", p.x, p.y, p.line),
+        Some(p) => format!(" at ({:.3}, {:.3})", p.x, p.y),
+        None => String::new(),
+    }
+}
+
+/// The readable report.
+pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "final depth  Z{:.4} (deepest Z{:.4})",
+        r.final_depth, r.deepest
+    );
+    for (i, p) in r.pockets.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "pocket {}     area {:.3} mm², reachable {:.3} mm²\n  gouge      {:.4} mm{}\n  leftover   {:.4} mm² ({:.4} %), thickest {:.4} mm{}",
+            i + 1,
+            p.area,
+            p.reachable_area,
+            p.gouge,
+            place(&p.gouge_at),
+            p.leftover_area,
+            p.leftover_percent,
+            p.thickest,
+            place(&p.thickest_at)
+        );
+    }
+    let lines = |v: &[pocketeer::simulate::check::Place]| {
+        let l: Vec<String> = v.iter().take(5).map(|p| p.line.to_string()).collect();
+        if v.is_empty() {
+            "none".to_string()
+        } else {
+            format!(
+                "{} (lines {}{})",
+                v.len(),
+                l.join(", "),
+                if v.len() > 5 { ", ..." } else { "" }
+            )
+        }
+    };
+    let _ = writeln!(s, "rapids below Z=0          {}", lines(&r.rapids_below_top));
+    let _ = writeln!(s, "plunges into uncut stock  {}", lines(&r.plunges));
+    let _ = writeln!(s, "feed moves without F      {}", lines(&r.feedless));
+    let _ = writeln!(
+        s,
+        "cutting {:.1} mm, rapid {:.1} mm, {} retract(s), about {:.0} s",
+        r.cut_length, r.rapid_length, r.retracts, r.seconds
+    );
+    let _ = writeln!(
+        s,
+        "{}: gouge {:.4} mm (tolerance {}), thickest leftover {:.4} mm (tolerance {})",
+        if r.passed { "PASSED" } else { "FAILED" },
+        r.gouge,
+        params.gouge_tolerance,
+        r.thickest,
+        params.leftover_tolerance
+    );
+    s
+}
+
+fn preview(analysis: &pocketeer::Analysis, report: &CheckReport) -> String {
+    use pocketeer::export::svg;
+    use pocketeer::geom::{Contour, Point};
+    let walls: Vec<Contour> = analysis
+        .regions
+        .pockets
+        .iter()
+        .flat_map(|p| std::iter::once(p.boundary.clone()).chain(p.islands.iter().cloned()))
+        .collect();
+    let polys = |shapes: &[Vec<Vec<[f64; 2]>>]| -> Vec<Contour> {
+        shapes
+            .iter()
+            .flatten()
+            .filter(|r| r.len() >= 2)
+            .map(|r| Contour::polygon(&r.iter().map(|p| Point::new(p[0], p[1])).collect::<Vec<_>>()))
+            .collect()
+    };
+    let swept = polys(&report.swept);
+    let leftover: Vec<Contour> = report.pockets.iter().flat_map(|p| polys(&p.leftover)).collect();
+    svg::svg_document(&[
+        svg::Layer {
+            name: "drawing",
+            stroke: "black",
+            fill: "#dde6f0",
+            contours: &walls,
+            paths: &[],
+        },
+        svg::Layer {
+            name: "swept",
+            stroke: "none",
+            fill: "#7fb0e0",
+            contours: &swept,
+            paths: &[],
+        },
+        svg::Layer {
+            name: "leftover",
+            stroke: "#d03030",
+            fill: "#f08080",
+            contours: &leftover,
+            paths: &[],
+        },
+    ])
+}

@@ -1,0 +1,351 @@
+//! Measuring a program against its drawing: gouge, leftover, rapids in the stock, plunges
+//! into uncut material, feed moves without a feed rate, lengths and time.
+
+use super::gcode::{Motion, Program, ProgramMove};
+use super::polygon::{largest_inscribed_circle, ring, shape_area, Shape};
+use crate::geom::{Arc, Contour, Line, Point, Segment, SegmentIndex, Tolerance};
+use crate::import::Pocket;
+use crate::offset::Region;
+use crate::toolpath::Point3;
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::float::single::SingleFloatOverlay;
+use i_overlay::mesh::float::stroke::offset::StrokeOffset;
+use i_overlay::mesh::float::style::{LineCap, LineJoin, StrokeStyle};
+use serde::Serialize;
+
+/// Chord error of every flattened arc, mm: five times below the tightest tolerance checked.
+pub const CHORD: f64 = 0.001;
+
+/// Rapid speed assumed for time estimates, mm/min.
+pub const RAPID_RATE: f64 = 5000.0;
+
+/// What to check against.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CheckParams {
+    /// Tool radius, mm.
+    pub tool_radius: f64,
+    /// The pocket depth below Z=0, mm (positive); `None`: the deepest Z of the program.
+    pub depth: Option<f64>,
+    /// Largest gouge accepted, mm.
+    pub gouge_tolerance: f64,
+    /// Thickest leftover accepted, mm.
+    pub leftover_tolerance: f64,
+}
+
+/// A place in the program: where and on which line.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Place {
+    /// X, mm.
+    pub x: f64,
+    /// Y, mm.
+    pub y: f64,
+    /// Line of the program (from 1), 0 when none.
+    pub line: usize,
+}
+
+/// The figures of one pocket.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PocketCheck {
+    /// Area of the pocket, mm².
+    pub area: f64,
+    /// Area the tool can reach (the pocket opened by the tool disc), mm².
+    pub reachable_area: f64,
+    /// Largest distance by which the tool disc leaves the pocket below Z=0, mm (0: none).
+    pub gouge: f64,
+    /// Where the largest gouge is.
+    pub gouge_at: Option<Place>,
+    /// Reachable area not swept at the final depth, mm².
+    pub leftover_area: f64,
+    /// The same as a share of the reachable area, percent.
+    pub leftover_percent: f64,
+    /// Diameter of the largest circle inside a leftover piece, mm.
+    pub thickest: f64,
+    /// Centre of that circle.
+    pub thickest_at: Option<Place>,
+    /// Leftover pieces (outer ring first), for drawing.
+    #[serde(skip)]
+    pub leftover: Vec<Shape>,
+}
+
+/// The report of a check.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckReport {
+    /// One entry per pocket, in the drawing's order.
+    pub pockets: Vec<PocketCheck>,
+    /// Z of the final depth checked.
+    pub final_depth: f64,
+    /// Deepest Z the program reaches.
+    pub deepest: f64,
+    /// Rapid moves that go below Z=0.
+    pub rapids_below_top: Vec<Place>,
+    /// Feed moves going straight down into stock not cut before at that depth.
+    pub plunges: Vec<Place>,
+    /// Feed moves before any feed rate was set.
+    pub feedless: Vec<Place>,
+    /// Length of feed moves, mm.
+    pub cut_length: f64,
+    /// Length of rapid moves, mm.
+    pub rapid_length: f64,
+    /// Rapid moves upwards.
+    pub retracts: usize,
+    /// Estimated time, seconds (rapids at [`RAPID_RATE`]).
+    pub seconds: f64,
+    /// Largest gouge over all pockets, mm.
+    pub gouge: f64,
+    /// Thickest leftover over all pockets, mm.
+    pub thickest: f64,
+    /// True when gouge and leftover are within the tolerances and no rapid goes below Z=0.
+    pub passed: bool,
+    /// The area swept at the final depth, for drawing.
+    #[serde(skip)]
+    pub swept: Vec<Shape>,
+}
+
+/// The path of a move seen from above.
+fn footprint(m: &ProgramMove) -> Segment {
+    match m.motion {
+        Motion::Arc { center, sweep } => {
+            let v = m.from.xy() - center;
+            Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
+        }
+        _ => Segment::Line(Line::new(m.from.xy(), m.to.xy())),
+    }
+}
+
+/// Checks `program` against `pockets` (see [`CheckReport`]).
+pub fn check_program(
+    pockets: &[Pocket],
+    program: &Program,
+    params: &CheckParams,
+    tol: &Tolerance,
+) -> CheckReport {
+    let r = params.tool_radius;
+    let moves = &program.moves;
+    let deepest = moves.iter().map(|m| m.to.z.min(m.from.z)).fold(0.0, f64::min);
+    let final_depth = params.depth.map_or(deepest, |d| -d);
+    let regions: Vec<Region> = pockets.iter().map(Region::new).collect();
+    let walls: Vec<SegmentIndex> = pockets
+        .iter()
+        .map(|p| {
+            let segs: Vec<Segment> = std::iter::once(&p.boundary)
+                .chain(&p.islands)
+                .flat_map(|c| c.segments.iter().copied())
+                .collect();
+            SegmentIndex::new(&segs)
+        })
+        .collect();
+    let mut report = CheckReport {
+        pockets: Vec::new(),
+        final_depth,
+        deepest,
+        rapids_below_top: Vec::new(),
+        plunges: Vec::new(),
+        feedless: Vec::new(),
+        cut_length: 0.0,
+        rapid_length: 0.0,
+        retracts: 0,
+        seconds: 0.0,
+        gouge: 0.0,
+        thickest: 0.0,
+        passed: true,
+        swept: Vec::new(),
+    };
+    let mut gouges: Vec<(f64, Option<Place>)> = vec![(0.0, None); pockets.len()];
+    for (k, m) in moves.iter().enumerate() {
+        let len = m.length();
+        let place = |p: Point| Place {
+            x: p.x,
+            y: p.y,
+            line: m.line,
+        };
+        if m.motion == Motion::Rapid {
+            report.rapid_length += len;
+            report.seconds += 60.0 * len / RAPID_RATE;
+            if m.to.z > m.from.z {
+                report.retracts += 1;
+            }
+            if m.from.z.min(m.to.z) < -1e-9 {
+                report.rapids_below_top.push(place(m.to.xy()));
+            }
+            continue;
+        }
+        report.cut_length += len;
+        match m.feed {
+            Some(f) if f > 0.0 => report.seconds += 60.0 * len / f,
+            _ => report.feedless.push(place(m.to.xy())),
+        }
+        if m.from.z.min(m.to.z) >= 0.0 {
+            continue;
+        }
+        let seg = footprint(m);
+        // The pocket the move is in (by its middle), or the nearest when it is in none.
+        let mid = seg.point_at(0.5);
+        let owner = (0..pockets.len())
+            .find(|&i| regions[i].contains(mid))
+            .or_else(|| {
+                (0..pockets.len()).min_by(|&a, &b| walls[a].distance(mid).total_cmp(&walls[b].distance(mid)))
+            });
+        if let Some(i) = owner {
+            let inside = regions[i].contains(mid);
+            let g = if inside {
+                walls[i]
+                    .nearest_to_segment(&seg, r + params.gouge_tolerance.max(0.0) + 1.0, tol.eps)
+                    .map(|(d, at)| (r - d, at))
+            } else {
+                let d = walls[i].distance(mid);
+                Some((r + d, mid))
+            };
+            // A move that touches a wall may leave the pocket: then the deepest point outside
+            // decides, found along the move (every 5 µm).
+            let g = match g {
+                Some(found) if found.0 >= r - 1e-9 => {
+                    let n = ((seg.length() / 0.005).ceil() as usize).clamp(1, 100_000);
+                    (0..=n)
+                        .map(|k| seg.point_at(k as f64 / n as f64))
+                        .filter(|&q| !regions[i].contains(q))
+                        .map(|q| (r + walls[i].distance(q), q))
+                        .max_by(|a, b| a.0.total_cmp(&b.0))
+                        .or(Some(found))
+                }
+                other => other,
+            };
+            if let Some((g, at)) = g {
+                if g > gouges[i].0 {
+                    gouges[i] = (g, Some(place(at)));
+                }
+            }
+        }
+        // A feed move straight down below Z=0 must land where the tool has cut that deep.
+        let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6 && m.to.z < m.from.z;
+        if vertical && m.to.z < 0.0 && !cut_before(&moves[..k], m.to, r) {
+            report.plunges.push(place(m.to.xy()));
+        }
+    }
+    report.swept = swept(moves, final_depth, r);
+    for (i, p) in pockets.iter().enumerate() {
+        let pc = pocket_check(p, &regions[i], &report.swept, gouges[i], r, tol);
+        report.gouge = report.gouge.max(pc.gouge);
+        report.thickest = report.thickest.max(pc.thickest);
+        report.pockets.push(pc);
+    }
+    report.passed = report.gouge <= params.gouge_tolerance
+        && report.thickest <= params.leftover_tolerance
+        && report.rapids_below_top.is_empty();
+    report
+}
+
+/// True when a feed move before has passed within a micrometre of `p` at `p`'s depth or deeper.
+fn cut_before(before: &[ProgramMove], p: Point3, r: f64) -> bool {
+    let _ = r;
+    before.iter().any(|m| {
+        m.motion != Motion::Rapid && {
+            let seg = footprint(m);
+            let d = crate::geom::point_distance(&seg, p.xy());
+            d <= 1e-3 && {
+                let t = crate::geom::closest_param(&seg, p.xy());
+                m.point_at(t).z <= p.z + 1e-4
+            }
+        }
+    })
+}
+
+/// The area swept by the tool at `depth`: the chains of feed moves at that depth, stroked
+/// with round joins and ends to the tool's width.
+fn swept(moves: &[ProgramMove], depth: f64, r: f64) -> Vec<Shape> {
+    let at_depth = |z: f64| (z - depth).abs() <= 1e-4;
+    let mut chains: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut last_end: Option<Point3> = None;
+    for m in moves {
+        if m.motion == Motion::Rapid || !at_depth(m.from.z) || !at_depth(m.to.z) {
+            last_end = None;
+            continue;
+        }
+        let pts = super::polygon::flatten(&[footprint(m)], CHORD);
+        let continues = last_end.is_some_and(|e| e.distance(m.from) < 1e-9);
+        match chains.last_mut() {
+            Some(chain) if continues => chain.extend(pts.into_iter().skip(1)),
+            _ => chains.push(pts),
+        }
+        let e = m.to.xy();
+        if let Some(chain) = chains.last_mut() {
+            chain.push([e.x, e.y]);
+        }
+        last_end = Some(m.to);
+    }
+    // Round joins and ends within the chord error: L/R for the segment count.
+    let angle = 2.0 * (1.0 - (CHORD / r).min(1.0)).acos();
+    let style = StrokeStyle::new(2.0 * r)
+        .line_join(LineJoin::Round(angle))
+        .start_cap(LineCap::Round(angle))
+        .end_cap(LineCap::Round(angle));
+    // A chain that stays in one place strokes to nothing: give it a hair of length.
+    for c in &mut chains {
+        if c.len() == 1 {
+            let p = c[0];
+            c.push([p[0] + 1e-6, p[1]]);
+        }
+    }
+    chains.stroke(style, false)
+}
+
+fn pocket_check(
+    pocket: &Pocket,
+    region: &Region,
+    swept: &[Shape],
+    gouge: (f64, Option<Place>),
+    r: f64,
+    tol: &Tolerance,
+) -> PocketCheck {
+    // What the tool can reach: the pocket eroded by the radius, then grown back.
+    let centres = region.offset(r, tol);
+    let reach: Vec<Contour> = if centres.is_empty() {
+        Vec::new()
+    } else {
+        Region::from_loops(&centres).offset(-r, tol)
+    };
+    let reach_rings: Vec<Vec<[f64; 2]>> = reach.iter().map(|c| ring(c, CHORD)).collect();
+    let reachable_area: f64 = reach.iter().map(Contour::signed_area).sum();
+    let leftover: Vec<Shape> = if reach_rings.is_empty() {
+        Vec::new()
+    } else {
+        reach_rings.overlay(&swept.to_vec(), OverlayRule::Difference, FillRule::NonZero)
+    };
+    let leftover_area: f64 = leftover.iter().map(shape_area).sum();
+    let mut thickest: (f64, Option<Place>) = (0.0, None);
+    for piece in &leftover {
+        // No circle inside a shape is wider than 4·area/perimeter: most pieces are rounding
+        // slivers along the walls and need no search.
+        let perimeter: f64 = piece.iter().map(|r| super::polygon::ring_length(r)).sum();
+        let bound = 4.0 * shape_area(piece) / perimeter.max(1e-300);
+        if bound <= thickest.0.max(1e-3) {
+            continue;
+        }
+        let (c, radius) = largest_inscribed_circle(piece, 1e-4);
+        if 2.0 * radius > thickest.0 {
+            thickest = (
+                2.0 * radius,
+                Some(Place {
+                    x: c.x,
+                    y: c.y,
+                    line: 0,
+                }),
+            );
+        }
+    }
+    PocketCheck {
+        area: pocket.area(),
+        reachable_area,
+        gouge: gouge.0.max(0.0),
+        gouge_at: gouge.1,
+        leftover_area,
+        leftover_percent: if reachable_area > 0.0 {
+            100.0 * leftover_area / reachable_area
+        } else {
+            0.0
+        },
+        thickest: thickest.0,
+        thickest_at: thickest.1,
+        leftover,
+    }
+}

@@ -1,0 +1,170 @@
+//! `check` on programs with known defects: it finds exactly the defects planted, and passes
+//! clean programs.
+
+use pocketeer::clear::ClearParams;
+use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
+use pocketeer::import::Pocket;
+use pocketeer::link::{Direction, Entry, LinkParams};
+use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
+
+fn pocket() -> Pocket {
+    let p = Point::new;
+    Pocket {
+        boundary: Contour::polygon(&[p(0.0, 0.0), p(100.0, 0.0), p(100.0, 60.0), p(0.0, 60.0)]),
+        islands: vec![
+            Contour::new(vec![Segment::Arc(Arc::new(
+                p(30.0, 30.0),
+                10.0,
+                0.0,
+                -std::f64::consts::TAU,
+            ))]),
+            Contour::new(vec![Segment::Arc(Arc::new(
+                p(70.0, 30.0),
+                8.0,
+                0.0,
+                -std::f64::consts::TAU,
+            ))]),
+        ],
+    }
+}
+
+fn our_program(pocket: &Pocket, stepover: f64) -> String {
+    let tol = Tolerance::default();
+    let clear = ClearParams {
+        tool_radius: 3.0,
+        stepover,
+        allowance: 0.0,
+    };
+    let link = LinkParams {
+        tool_radius: 3.0,
+        depth: 2.0,
+        step_down: 6.0,
+        safe_z: 5.0,
+        direction: Direction::Climb,
+        entry: Entry::Helix,
+        ramp_angle: 3f64.to_radians(),
+    };
+    let job = pocketeer::job::pocket_job(std::slice::from_ref(pocket), &clear, &link, &tol).unwrap();
+    let settings = ProgramSettings {
+        units: ProgramUnits::Millimetres,
+        feed: 1000.0,
+        plunge_feed: 300.0,
+        spindle: 10000.0,
+        safe_z: 5.0,
+        header: vec![],
+    };
+    write_gcode(&job.linked.toolpath, &settings, Dialect::Grbl)
+}
+
+fn check(pocket: &Pocket, program: &str) -> CheckReport {
+    let p = read_program(program).expect("reads");
+    let params = CheckParams {
+        tool_radius: 3.0,
+        depth: Some(2.0),
+        gouge_tolerance: 0.01,
+        leftover_tolerance: 0.05,
+    };
+    check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default())
+}
+
+#[test]
+fn our_programs_pass_at_40_and_83_percent() {
+    for stepover in [2.4, 4.98] {
+        let r = check(&pocket(), &our_program(&pocket(), stepover));
+        assert!(r.passed, "{r:#?}");
+        assert!(
+            r.gouge <= 0.01 && r.thickest <= 0.05,
+            "gouge {} thickest {}",
+            r.gouge,
+            r.thickest
+        );
+        assert!(
+            r.rapids_below_top.is_empty() && r.plunges.is_empty() && r.feedless.is_empty(),
+            "{r:#?}"
+        );
+        assert!(
+            r.pockets[0].leftover_percent < 0.01,
+            "{}",
+            r.pockets[0].leftover_percent
+        );
+        eprintln!(
+            "stepover {stepover}: leftover {:.6} mm² thickest {:.5}",
+            r.pockets[0].leftover_area, r.thickest
+        );
+    }
+}
+
+/// Our program with `extra` lines inserted after the last feed move at the final depth.
+fn with_inserted(program: &str, extra: &[&str]) -> (String, usize) {
+    let lines: Vec<&str> = program.lines().collect();
+    let at = lines
+        .iter()
+        .rposition(|l| l.starts_with("G1 X") || l.starts_with("G1 Y"))
+        .expect("a feed move");
+    let mut out: Vec<&str> = lines[..=at].to_vec();
+    out.extend_from_slice(extra);
+    out.extend_from_slice(&lines[at + 1..]);
+    (out.join("\n") + "\n", at + 2)
+}
+
+#[test]
+fn a_move_too_close_to_the_wall_is_found_with_its_depth_and_line() {
+    let (program, line) = with_inserted(&our_program(&pocket(), 2.4), &["G1 X2.8 Y50", "G1 X3 Y50"]);
+    let r = check(&pocket(), &program);
+    assert!(!r.passed);
+    assert!((r.gouge - 0.2).abs() < 1e-6, "{}", r.gouge);
+    let at = r.pockets[0].gouge_at.unwrap();
+    assert_eq!(at.line, line);
+    assert!((at.x - 2.8).abs() < 1e-6);
+    assert!(r.thickest <= 0.05 && r.rapids_below_top.is_empty());
+}
+
+#[test]
+fn a_link_across_an_island_is_a_gouge_as_deep_as_the_island_is_wide() {
+    let (program, _) = with_inserted(&our_program(&pocket(), 2.4), &["G1 X30 Y30", "G1 X3 Y57"]);
+    let r = check(&pocket(), &program);
+    assert!(!r.passed);
+    // The tool reaches the island's centre: its radius plus the island's.
+    assert!((r.gouge - 13.0).abs() < 1e-6, "{}", r.gouge);
+}
+
+#[test]
+fn a_rapid_through_the_stock_is_reported() {
+    let (program, line) = with_inserted(&our_program(&pocket(), 2.4), &["G0 X50 Y4", "G1 X3 Y3"]);
+    let r = check(&pocket(), &program);
+    assert!(!r.passed);
+    assert_eq!(r.rapids_below_top.len(), 1);
+    assert_eq!(r.rapids_below_top[0].line, line);
+    assert!(r.gouge <= 0.01);
+}
+
+#[test]
+fn a_missing_loop_leaves_material_and_nothing_else() {
+    let program = our_program(&pocket(), 2.4);
+    // Drop the cutting moves of the last loop at the wall (the moves after the last link).
+    let lines: Vec<&str> = program.lines().collect();
+    let end = lines
+        .iter()
+        .rposition(|l| l.starts_with("G1 X") || l.starts_with("G1 Y"))
+        .unwrap();
+    let start = (0..end)
+        .rev()
+        .find(|&k| lines[k].starts_with("G2") || lines[k].starts_with("G3"))
+        .unwrap();
+    let lazy: Vec<&str> = lines[..=start].iter().chain(&lines[end + 1..]).copied().collect();
+    let r = check(&pocket(), &(lazy.join("\n") + "\n"));
+    assert!(!r.passed);
+    assert!(r.thickest > 0.5, "{}", r.thickest);
+    assert!(r.gouge <= 0.01 && r.rapids_below_top.is_empty() && r.plunges.is_empty());
+}
+
+#[test]
+fn feed_moves_before_any_feed_rate_and_plunges_are_reported() {
+    let program = "G21 G90\nG0 Z5\nG0 X20 Y10\nG1 Z-2\nG1 X80 F1000\nG0 Z5\n";
+    let r = check(&pocket(), program);
+    assert_eq!(r.feedless.len(), 1);
+    assert_eq!(r.feedless[0].line, 4);
+    assert_eq!(r.plunges.len(), 1);
+    assert_eq!(r.plunges[0].line, 4);
+}
