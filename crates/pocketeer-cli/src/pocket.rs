@@ -64,6 +64,10 @@ pub struct PocketArgs {
     /// Also draw the drawing, the loops and the tool path in this SVG file.
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Replay the program against the drawing before writing it (as `pocketeer check` does)
+    /// and refuse to write it when it gouges or leaves material.
+    #[arg(long)]
+    check: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -209,6 +213,26 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         PostArg::Mach3 => Dialect::Mach3,
     };
     let program = write_gcode(&job.linked.toolpath, &settings, dialect);
+    if args.check {
+        let params = pocketeer::simulate::CheckParams {
+            tool_radius: 0.5 * diameter,
+            depth: Some(depth),
+            gouge_tolerance: 0.01,
+            leftover_tolerance: 0.05,
+        };
+        let read = pocketeer::simulate::read_program(&program)
+            .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
+        let report = pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, tol);
+        eprint!("{}", crate::check::to_text(&report, &params));
+        if !report.passed {
+            return Err(Failure(format!(
+                "{name}: the check failed (gouge {:.4} mm, thickest leftover {:.4} mm); {} not written",
+                report.gouge,
+                report.thickest,
+                args.output.display()
+            )));
+        }
+    }
     if let Some(path) = &args.svg {
         let doc = preview(&analysis, &job);
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;

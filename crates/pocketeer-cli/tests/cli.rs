@@ -312,3 +312,73 @@ fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
         assert_eq!(std::fs::read_to_string(&nc).unwrap(), "(keep me)\n");
     }
 }
+
+#[test]
+fn check_passes_our_program_and_fails_a_lazy_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("bracket.nc");
+    let res = run(&[
+        "pocket",
+        "examples/bracket.dxf",
+        "--tool-diameter",
+        "6",
+        "--stepover",
+        "83%",
+        "--depth",
+        "2",
+        "--check",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&res.stderr);
+    assert!(res.status.success(), "{stderr}");
+    assert!(stderr.contains("PASSED"), "{stderr}");
+    let res = run(&[
+        "check",
+        "examples/bracket.dxf",
+        nc.to_str().unwrap(),
+        "--tool-diameter",
+        "6",
+        "--json",
+    ]);
+    assert_eq!(
+        res.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&res.stdout).unwrap();
+    assert_eq!(v["passed"], true);
+    assert!(v["pockets"][0]["gouge"].as_f64().unwrap() <= 0.01);
+    // Without its arcs the program cuts across the islands and leaves material.
+    let g = std::fs::read_to_string(&nc).unwrap();
+    let lazy: String = g
+        .lines()
+        .filter(|l| !l.starts_with("G2 ") && !l.starts_with("G3 "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let lazy_nc = dir.path().join("lazy.nc");
+    std::fs::write(&lazy_nc, lazy).unwrap();
+    let res = run(&[
+        "check",
+        "examples/bracket.dxf",
+        lazy_nc.to_str().unwrap(),
+        "--tool-diameter",
+        "6",
+    ]);
+    let out = String::from_utf8_lossy(&res.stdout);
+    assert_eq!(res.status.code(), Some(1), "{out}");
+    assert!(out.contains("FAILED"), "{out}");
+    // A program that does not read is an error naming the line.
+    let bad = dir.path().join("bad.nc");
+    std::fs::write(&bad, "G0 X0 Y0 Z0\nG2 X10 Y0 I4 J0 F100\n").unwrap();
+    let res = run(&[
+        "check",
+        "examples/bracket.dxf",
+        bad.to_str().unwrap(),
+        "--tool-diameter",
+        "6",
+    ]);
+    assert_eq!(res.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&res.stderr).contains("bad.nc: line 2:"));
+}
