@@ -46,6 +46,47 @@ pub fn ring_area(r: &[[f64; 2]]) -> f64 {
     0.5 * a
 }
 
+/// `points` with every point dropped that lies within `tolerance` of the line between the
+/// points kept around it (Douglas–Peucker): a path of many short segments strokes far faster,
+/// and moves by at most `tolerance`.
+pub fn simplify(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
+    let n = points.len();
+    if n < 3 {
+        return points.to_vec();
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (p, q) = (points[a], points[b]);
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        let len2 = dx * dx + dy * dy;
+        let mut worst = (0.0, 0);
+        for (k, r) in points.iter().enumerate().take(b).skip(a + 1) {
+            let t = if len2 > 0.0 {
+                (((r[0] - p[0]) * dx + (r[1] - p[1]) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let d = (p[0] + t * dx - r[0]).hypot(p[1] + t * dy - r[1]);
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > tolerance {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    points
+        .iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(*p))
+        .collect()
+}
+
 /// Length of a closed ring.
 pub fn ring_length(r: &[[f64; 2]]) -> f64 {
     let n = r.len();
