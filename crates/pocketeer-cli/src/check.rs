@@ -59,7 +59,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     };
     let report = check_program(&analysis.regions.pockets, &program, &params, &analysis.tolerance);
     if let Some(path) = &args.svg {
-        output::write_atomic(path, preview(&analysis, &report).as_bytes()).map_err(Failure)?;
+        output::write_atomic(path, preview(&analysis, &program, &report).as_bytes()).map_err(Failure)?;
     }
     let text = if args.json {
         let mut t =
@@ -141,9 +141,14 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
     s
 }
 
-fn preview(analysis: &pocketeer::Analysis, report: &CheckReport) -> String {
+fn preview(
+    analysis: &pocketeer::Analysis,
+    program: &pocketeer::simulate::Program,
+    report: &CheckReport,
+) -> String {
     use pocketeer::export::svg;
-    use pocketeer::geom::{Contour, Point};
+    use pocketeer::geom::{Arc, Contour, Point, Segment};
+    use pocketeer::simulate::gcode::Motion;
     let walls: Vec<Contour> = analysis
         .regions
         .pockets
@@ -160,6 +165,31 @@ fn preview(analysis: &pocketeer::Analysis, report: &CheckReport) -> String {
     };
     let swept = polys(&report.swept);
     let leftover: Vec<Contour> = report.pockets.iter().flat_map(|p| polys(&p.leftover)).collect();
+    // The tool path below the stock top, and a ring around every gouge and the thickest leftover.
+    let path: Vec<Vec<Segment>> = program
+        .moves
+        .iter()
+        .filter(|m| m.motion != Motion::Rapid && m.to.z.min(m.from.z) < 0.0)
+        .map(|m| vec![m.footprint()])
+        .filter(|s| s[0].length() > 0.0)
+        .collect();
+    let size = walls
+        .iter()
+        .fold(pocketeer::geom::Aabb::EMPTY, |b, c| b.union(&c.bbox()));
+    let mark = 0.01 * size.width().max(size.height()).max(1.0);
+    let ring = |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), mark))]);
+    let gouges: Vec<Contour> = report
+        .pockets
+        .iter()
+        .filter(|p| p.gouge > 0.001)
+        .filter_map(|p| p.gouge_at.map(|a| ring(a.x, a.y)))
+        .collect();
+    let thick: Vec<Contour> = report
+        .pockets
+        .iter()
+        .filter(|p| p.thickest > 0.001)
+        .filter_map(|p| p.thickest_at.map(|a| ring(a.x, a.y)))
+        .collect();
     svg::svg_document(&[
         svg::Layer {
             name: "drawing",
@@ -171,15 +201,36 @@ fn preview(analysis: &pocketeer::Analysis, report: &CheckReport) -> String {
         svg::Layer {
             name: "swept",
             stroke: "none",
-            fill: "#7fb0e0",
+            fill: "#9cc3ea",
             contours: &swept,
             paths: &[],
+        },
+        svg::Layer {
+            name: "path",
+            stroke: "#2060c0",
+            fill: "none",
+            contours: &[],
+            paths: &path,
         },
         svg::Layer {
             name: "leftover",
             stroke: "#d03030",
             fill: "#f08080",
             contours: &leftover,
+            paths: &[],
+        },
+        svg::Layer {
+            name: "gouge",
+            stroke: "#c000c0",
+            fill: "none",
+            contours: &gouges,
+            paths: &[],
+        },
+        svg::Layer {
+            name: "thickest-leftover",
+            stroke: "#d07000",
+            fill: "none",
+            contours: &thick,
             paths: &[],
         },
     ])

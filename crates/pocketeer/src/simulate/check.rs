@@ -3,7 +3,7 @@
 
 use super::gcode::{Motion, Program, ProgramMove};
 use super::polygon::{largest_inscribed_circle, ring, shape_area, Shape};
-use crate::geom::{Arc, Contour, Line, Point, Segment, SegmentIndex, Tolerance};
+use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance};
 use crate::import::Pocket;
 use crate::offset::Region;
 use crate::toolpath::Point3;
@@ -104,13 +104,7 @@ pub struct CheckReport {
 
 /// The path of a move seen from above.
 fn footprint(m: &ProgramMove) -> Segment {
-    match m.motion {
-        Motion::Arc { center, sweep } => {
-            let v = m.from.xy() - center;
-            Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
-        }
-        _ => Segment::Line(Line::new(m.from.xy(), m.to.xy())),
-    }
+    m.footprint()
 }
 
 /// Checks `program` against `pockets` (see [`CheckReport`]).

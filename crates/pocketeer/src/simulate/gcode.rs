@@ -102,6 +102,18 @@ impl ProgramMove {
         }
     }
 
+    /// The path of the move seen from above.
+    pub fn footprint(&self) -> crate::geom::Segment {
+        use crate::geom::{Arc, Line, Segment};
+        match self.motion {
+            Motion::Arc { center, sweep } => {
+                let v = self.from.xy() - center;
+                Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
+            }
+            _ => Segment::Line(Line::new(self.from.xy(), self.to.xy())),
+        }
+    }
+
     /// The point at parameter `t` in 0..=1 (Z linear along the move).
     pub fn point_at(&self, t: f64) -> Point3 {
         let z = self.from.z + (self.to.z - self.from.z) * t;
