@@ -168,3 +168,72 @@ fn feed_moves_before_any_feed_rate_and_plunges_are_reported() {
     assert_eq!(r.plunges.len(), 1);
     assert_eq!(r.plunges[0].line, 4);
 }
+
+mod common;
+
+/// Plain contour-parallel loops at r + k·stepover, no clean-up: what most CAM does.
+fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> String {
+    use pocketeer::toolpath::{Feed, Point3, Toolpath};
+    let tol = Tolerance::default();
+    let region = pocketeer::offset::Region::new(pocket);
+    let distances: Vec<f64> = (0..200).map(|k| r + k as f64 * stepover).collect();
+    let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+    for level in region.offset_levels(&distances, &tol).iter().rev() {
+        for l in level {
+            let s = l.segments[0].start();
+            path.rapid(Point3::at(s, 5.0));
+            path.line(Point3::at(s, -depth), Feed::Plunge);
+            for seg in &l.segments {
+                match seg {
+                    Segment::Line(line) => path.line(Point3::at(line.end, -depth), Feed::Cut),
+                    Segment::Arc(a) => path.arc_to(Point3::at(a.end(), -depth), a.center, a.sweep, Feed::Cut),
+                }
+            }
+            path.line(Point3::at(s, 0.0), Feed::Cut);
+            path.rapid(Point3::at(s, 5.0));
+        }
+    }
+    let settings = ProgramSettings {
+        units: ProgramUnits::Millimetres,
+        feed: 1000.0,
+        plunge_feed: 300.0,
+        spindle: 10000.0,
+        safe_z: 5.0,
+        header: vec![],
+    };
+    write_gcode(&path, &settings, Dialect::LinuxCnc)
+}
+
+#[test]
+fn plain_offsets_above_the_corner_limit_leave_material_ours_do_not() {
+    let star = Pocket {
+        boundary: common::shapes::star(7, 50.0, 22.0),
+        islands: vec![],
+    };
+    let plain = check(&star, &plain_offsets_program(&star, 3.0, 5.4, 2.0));
+    assert!(!plain.passed);
+    assert!(plain.thickest > 0.5, "{}", plain.thickest);
+    assert!(plain.gouge <= 0.01, "{}", plain.gouge);
+    // The program plunges straight down at every loop: into uncut stock at the first.
+    assert!(!plain.plunges.is_empty());
+    let ours = check(&star, &our_program(&star, 5.4));
+    assert!(ours.passed, "gouge {} thickest {}", ours.gouge, ours.thickest);
+    assert!(ours.plunges.is_empty());
+}
+
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+        /// `pocket`'s output passes `check` for random pockets at stepovers from 10 % to 90 %.
+        #[test]
+        fn our_programs_pass_the_check(pocket in common::shapes::pocket_strategy(), percent in 10.0..90.0f64) {
+            let r = check(&pocket, &our_program(&pocket, 6.0 * percent / 100.0));
+            prop_assert!(r.passed, "gouge {} thickest {}", r.gouge, r.thickest);
+            prop_assert!(r.rapids_below_top.is_empty() && r.plunges.is_empty() && r.feedless.is_empty());
+        }
+    }
+}

@@ -5,8 +5,9 @@
 mod common;
 
 use common::replay::{measure, read, Target};
+use common::shapes::{circle_cw, pocket_strategy, rect, star};
 use pocketeer::clear::ClearParams;
-use pocketeer::geom::{Contour, Point, Segment, Tolerance};
+use pocketeer::geom::{Segment, Tolerance};
 use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::offset::{offset_pocket, Region};
@@ -101,31 +102,6 @@ fn run(
     }
 }
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
-    let p = Point::new;
-    Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
-}
-
-fn circle_cw(cx: f64, cy: f64, r: f64) -> Contour {
-    Contour::new(vec![Segment::Arc(pocketeer::geom::Arc::new(
-        Point::new(cx, cy),
-        r,
-        0.0,
-        -std::f64::consts::TAU,
-    ))])
-}
-
-fn star(points: usize, outer: f64, inner: f64) -> Contour {
-    let pts: Vec<Point> = (0..2 * points)
-        .map(|k| {
-            let a = std::f64::consts::PI * k as f64 / points as f64 + 0.1;
-            let r = if k % 2 == 0 { outer } else { inner };
-            Point::new(r * a.cos(), r * a.sin())
-        })
-        .collect();
-    Contour::polygon(&pts)
-}
-
 fn assert_clean(o: &Outcome, depth: f64) {
     assert!(o.gouge <= 0.01, "gouge {:.4} mm", o.gouge);
     assert_eq!(
@@ -183,30 +159,6 @@ fn bar_island_splits_the_pocket_and_both_sides_are_cleared() {
 mod random {
     use super::*;
     use proptest::prelude::*;
-
-    /// A rectangle with up to four round islands that do not overlap each other or the wall.
-    fn pocket_strategy() -> impl Strategy<Value = Pocket> {
-        (
-            30.0..90.0f64,
-            25.0..60.0f64,
-            prop::collection::vec((0.05..0.95f64, 0.05..0.95f64, 1.0..8.0f64), 0..4),
-        )
-            .prop_map(|(w, h, islands)| {
-                let mut placed: Vec<(f64, f64, f64)> = Vec::new();
-                for (fx, fy, r) in islands {
-                    let (x, y) = (fx * w, fy * h);
-                    let clear_of_wall = x - r > 0.5 && y - r > 0.5 && w - x - r > 0.5 && h - y - r > 0.5;
-                    let clear_of_others = placed.iter().all(|&(a, b, s)| (x - a).hypot(y - b) > r + s + 0.5);
-                    if clear_of_wall && clear_of_others {
-                        placed.push((x, y, r));
-                    }
-                }
-                Pocket {
-                    boundary: rect(0.0, 0.0, w, h),
-                    islands: placed.iter().map(|&(x, y, r)| circle_cw(x, y, r)).collect(),
-                }
-            })
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod replay;
+pub mod shapes;
 
 use std::fmt::Write;
 
