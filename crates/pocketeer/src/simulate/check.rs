@@ -77,7 +77,7 @@ pub struct CheckReport {
     pub final_depth: f64,
     /// Deepest Z the program reaches.
     pub deepest: f64,
-    /// Rapid moves that go below Z=0.
+    /// Rapid moves below Z=0 (other than straight up out of the cut).
     pub rapids_below_top: Vec<Place>,
     /// Feed moves going straight down into stock not cut before at that depth.
     pub plunges: Vec<Place>,
@@ -159,7 +159,10 @@ pub fn check_program(
             if m.to.z > m.from.z {
                 report.retracts += 1;
             }
-            if m.from.z.min(m.to.z) < -1e-9 {
+            // A rapid straight up out of a cut is a retract through air; any other rapid that
+            // is below Z=0 at either end moves through, or down into, the stock.
+            let straight_up = m.from.xy().distance(m.to.xy()) <= 1e-6 && m.to.z >= m.from.z;
+            if m.from.z.min(m.to.z) < -1e-9 && !straight_up {
                 report.rapids_below_top.push(place(m.to.xy()));
             }
             continue;
