@@ -1,0 +1,89 @@
+//! Random pockets (a polygon with bulges, optional round islands) and distances from an
+//! `arbitrary` description: the offset must return closed loops whose points lie at distance
+//! d from the profile (1e-6 relative), or nothing, never panic.
+
+use arbitrary::{Arbitrary, Unstructured};
+use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::import::Pocket;
+
+#[derive(Arbitrary, Debug)]
+struct Input {
+    vertices: Vec<(i16, i16, i8)>,
+    islands: Vec<(i16, i16, u8)>,
+    distance: u16,
+}
+
+fn contour(vertices: &[(i16, i16, i8)]) -> Option<Contour> {
+    let pts: Vec<(Point, f64)> = vertices
+        .iter()
+        .map(|&(x, y, b)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), b as f64 / 128.0))
+        .collect();
+    let n = pts.len();
+    if n < 3 {
+        return None;
+    }
+    let segs: Vec<Segment> = (0..n)
+        .filter_map(|k| {
+            let ((a, b), (e, _)) = (pts[k], pts[(k + 1) % n]);
+            if a.distance(e) < 1e-3 {
+                return None;
+            }
+            Some(Arc::from_bulge(a, e, b).map(Segment::Arc).unwrap_or(Segment::Line(Line::new(a, e))))
+        })
+        .collect();
+    let c = Contour::new(segs);
+    (c.segments.len() >= 2 && c.signed_area().abs() > 1e-3).then_some(c)
+}
+
+fn main() {
+    afl::fuzz!(|data: &[u8]| {
+        let Ok(input) = Input::arbitrary(&mut Unstructured::new(data)) else { return };
+        let Some(boundary) = contour(&input.vertices[..input.vertices.len().min(64)]) else { return };
+        // Only simple outlines are pockets: the importer refuses self-crossing ones.
+        let segs = boundary.segments.clone();
+        for i in 0..segs.len() {
+            for j in i + 1..segs.len() {
+                let adjacent = j == i + 1 || (i == 0 && j == segs.len() - 1);
+                let hits = pocketeer::geom::intersect(&segs[i], &segs[j], 1e-9);
+                if hits.iter().count() > usize::from(adjacent) {
+                    return;
+                }
+            }
+        }
+        let boundary = if boundary.is_ccw() { boundary } else { boundary.reversed() };
+        let islands: Vec<Contour> = input
+            .islands
+            .iter()
+            .take(4)
+            .map(|&(x, y, r)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), 0.1 + r as f64 / 20.0))
+            .filter(|&(c, r)| boundary.contains(c) && segs.iter().all(|s| point_distance(s, c) > r + 0.01))
+            .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
+            .collect();
+        // Islands that overlap each other are merged by the importer: skip such inputs.
+        for (i, a) in islands.iter().enumerate() {
+            for b in &islands[i + 1..] {
+                if !pocketeer::geom::intersect(&a.segments[0], &b.segments[0], 1e-9).is_empty() {
+                    return;
+                }
+            }
+        }
+        let pocket = Pocket { boundary, islands };
+        let d = 0.01 + input.distance as f64 / 1000.0;
+        let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
+        let loops = pocketeer::offset::offset_pocket(&pocket, d, &tol);
+        let profile: Vec<Segment> = std::iter::once(&pocket.boundary)
+            .chain(&pocket.islands)
+            .flat_map(|c| c.segments.iter().copied())
+            .collect();
+        for l in &loops {
+            let n = l.segments.len();
+            for k in 0..n {
+                let (a, b) = (l.segments[k], l.segments[(k + 1) % n]);
+                assert!(a.end().distance(b.start()) < 1e-6, "loop not closed");
+                let m = a.point_at(0.5);
+                let dist = profile.iter().map(|s| point_distance(s, m)).fold(f64::INFINITY, f64::min);
+                assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "point at {dist}, not {d}");
+            }
+        }
+    });
+}
