@@ -36,7 +36,20 @@ fn contour(vertices: &[(i16, i16, i8)]) -> Option<Contour> {
 }
 
 fn main() {
-    afl::fuzz!(|data: &[u8]| {
+    // `offset FILE` replays one input and prints it (outside AFL).
+    if let Some(path) = std::env::args().nth(1) {
+        let data = std::fs::read(path).unwrap_or_default();
+        if let Ok(input) = Input::arbitrary(&mut Unstructured::new(&data)) {
+            eprintln!("{input:?}");
+        }
+        run(&data);
+        return;
+    }
+    afl::fuzz!(|data: &[u8]| run(data));
+}
+
+fn run(data: &[u8]) {
+    {
         let Ok(input) = Input::arbitrary(&mut Unstructured::new(data)) else { return };
         let Some(boundary) = contour(&input.vertices[..input.vertices.len().min(64)]) else { return };
         // Only simple outlines are pockets: the importer refuses self-crossing ones.
@@ -85,5 +98,5 @@ fn main() {
                 assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "point at {dist}, not {d}");
             }
         }
-    });
+    }
 }

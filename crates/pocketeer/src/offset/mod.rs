@@ -296,7 +296,9 @@ fn erode(
             ..p
         })
         .collect();
-    let kept = prune(pieces, profile, inside, d, tol);
+    let is_join =
+        |p: &Piece| p.source as usize >= elements && matches!(p.segment, crate::geom::Segment::Line(_));
+    let kept = prune(pieces, profile, inside, &is_join, d, tol);
     let kept = remove_dangling(cancel_opposites(kept, tol));
     let mut used = vec![false; 2 * elements];
     for p in &kept {

@@ -41,10 +41,16 @@ impl Profile {
 /// meets another raw offset curve, and the split stage cut every piece there. So pieces joined
 /// end to start at a node no other piece touches (a run) are valid or invalid together, and one
 /// point of each run decides: the middle of its longest piece.
+///
+/// Joining lines (`is_join`: the chords the raw offset puts where moved elements overlap or
+/// collapse) are no offset curve: their points are nearer than d to the joint, so the
+/// argument above does not hold along them. Each is a run of its own, judged by its own
+/// middle (a join of near-zero length, closing a loop, passes within the slack).
 pub fn prune(
     pieces: Vec<Piece>,
     profile: &Profile,
     inside: &dyn Fn(Point) -> bool,
+    is_join: &dyn Fn(&Piece) -> bool,
     d: f64,
     tol: &Tolerance,
 ) -> Vec<Piece> {
@@ -54,7 +60,8 @@ pub fn prune(
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
         .collect();
-    let run = runs(&pieces);
+    let joins: Vec<bool> = pieces.iter().map(is_join).collect();
+    let run = runs(&pieces, &joins);
     // The longest piece of each run (runs are numbered by one of their pieces).
     let mut longest: Vec<usize> = vec![usize::MAX; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
@@ -87,7 +94,7 @@ fn node_count(pieces: &[Piece]) -> usize {
 
 /// The run each piece belongs to: pieces are joined through nodes where exactly one piece
 /// ends and exactly one starts.
-fn runs(pieces: &[Piece]) -> Vec<usize> {
+fn runs(pieces: &[Piece], joins: &[bool]) -> Vec<usize> {
     let nodes = node_count(pieces);
     let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
     let (mut into, mut from) = (vec![usize::MAX; nodes], vec![usize::MAX; nodes]);
@@ -99,7 +106,7 @@ fn runs(pieces: &[Piece]) -> Vec<usize> {
     }
     let mut sets = UnionFind::new(pieces.len());
     for node in 0..nodes {
-        if ins[node] == 1 && outs[node] == 1 {
+        if ins[node] == 1 && outs[node] == 1 && !joins[into[node]] && !joins[from[node]] {
             sets.union(into[node], from[node]);
         }
     }

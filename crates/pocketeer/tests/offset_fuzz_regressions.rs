@@ -1,0 +1,114 @@
+//! Inputs the `offset` fuzz target (fuzz/src/bin/offset.rs) found, built the same way: a
+//! bulged polygon in hundredths of a millimetre (bulge in 128ths), round islands, a distance
+//! in micrometres above 0.01 mm. Every loop must be closed with its points at distance d.
+//! They failed because a joining chord of the raw offset was judged valid with the offset
+//! arcs it was chained to; joins are now judged on their own.
+
+use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::import::Pocket;
+
+fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
+    let pts: Vec<(Point, f64)> = vertices
+        .iter()
+        .map(|&(x, y, b)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), b as f64 / 128.0))
+        .collect();
+    let n = pts.len();
+    let segs: Vec<Segment> = (0..n)
+        .filter_map(|k| {
+            let ((a, b), (e, _)) = (pts[k], pts[(k + 1) % n]);
+            (a.distance(e) >= 1e-3).then(|| {
+                Arc::from_bulge(a, e, b)
+                    .map(Segment::Arc)
+                    .unwrap_or(Segment::Line(Line::new(a, e)))
+            })
+        })
+        .collect();
+    let c = Contour::new(segs);
+    let boundary = if c.is_ccw() { c } else { c.reversed() };
+    let islands: Vec<Contour> = islands
+        .iter()
+        .map(|&(x, y, r)| {
+            (
+                Point::new(x as f64 / 100.0, y as f64 / 100.0),
+                0.1 + r as f64 / 20.0,
+            )
+        })
+        .filter(|&(c, r)| {
+            boundary.contains(c) && boundary.segments.iter().all(|s| point_distance(s, c) > r + 0.01)
+        })
+        .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
+        .collect();
+    let pocket = Pocket { boundary, islands };
+    let d = 0.01 + distance as f64 / 1000.0;
+    let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
+    let profile: Vec<Segment> = std::iter::once(&pocket.boundary)
+        .chain(&pocket.islands)
+        .flat_map(|c| c.segments.iter().copied())
+        .collect();
+    for l in pocketeer::offset::offset_pocket(&pocket, d, &tol) {
+        let m = l.segments.len();
+        for k in 0..m {
+            let (a, b) = (l.segments[k], l.segments[(k + 1) % m]);
+            assert!(a.end().distance(b.start()) < 1e-6, "loop not closed");
+            let p = a.point_at(0.5);
+            let dist = profile
+                .iter()
+                .map(|s| point_distance(s, p))
+                .fold(f64::INFINITY, f64::min);
+            assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "{p:?} at {dist}, not {d}");
+        }
+    }
+}
+
+#[test]
+fn a_join_chord_between_offset_arcs_is_not_kept() {
+    let v = [
+        (3968, 3855, 15),
+        (3855, 3855, 15),
+        (3855, 100, 15),
+        (31503, 31611, 123),
+        (-17522, 3855, -15),
+    ];
+    case(&v, &[], 64000);
+    case(&v, &[], 32);
+}
+
+#[test]
+fn small_distances_on_tiny_bulged_polygons() {
+    case(
+        &[(13107, 13105, 51), (-77, -1, -128), (13107, 13107, -128)],
+        &[(13105, 13107, 51), (13107, 13107, 0)],
+        0,
+    );
+    case(
+        &[
+            (13107, 13105, 1),
+            (12979, 13107, 0),
+            (13070, 13107, 51),
+            (12583, 13122, 51),
+        ],
+        &[(0, 0, 0)],
+        0,
+    );
+    case(
+        &[
+            (13107, 13105, 1),
+            (12979, 13107, 0),
+            (13070, 13107, 51),
+            (12595, 13107, 51),
+            (51, 0, 0),
+        ],
+        &[],
+        0,
+    );
+    case(
+        &[
+            (13107, 13109, 1),
+            (13235, 13107, 0),
+            (13183, 13107, 51),
+            (13619, 13107, 19),
+        ],
+        &[(0, 0, 0)],
+        0,
+    );
+}
