@@ -268,3 +268,100 @@ fn the_bracket_example_is_cleared_cleanly() {
         assert!(o.warnings.is_empty(), "{:?}", o.warnings);
     }
 }
+
+/// The same pocket with its start points rotated, mirrored, and moved 1e5 mm away
+/// gives the same job: as many loops, the same cutting length, and still clean.
+#[test]
+fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
+    use pocketeer::geom::{Contour, Vector};
+    let base = Pocket {
+        boundary: star(7, 50.0, 22.0),
+        islands: vec![circle_cw(0.0, 0.0, 6.0)],
+    };
+    let map = |p: &Pocket, f: &dyn Fn(&Contour) -> Contour| Pocket {
+        boundary: f(&p.boundary),
+        islands: p.islands.iter().map(f).collect(),
+    };
+    let rotate_start = |c: &Contour| {
+        let mut s = c.segments.clone();
+        let k = s.len() / 3;
+        s.rotate_left(k);
+        Contour::new(s)
+    };
+    let mirror = |c: &Contour| {
+        // Mirror in x: every segment mirrored, then the contour reversed to keep its sense.
+        let m: Vec<Segment> = c
+            .segments
+            .iter()
+            .map(|s| match s {
+                Segment::Line(l) => Segment::Line(pocketeer::geom::Line::new(
+                    pocketeer::geom::Point::new(-l.start.x, l.start.y),
+                    pocketeer::geom::Point::new(-l.end.x, l.end.y),
+                )),
+                Segment::Arc(a) => Segment::Arc(pocketeer::geom::Arc::new(
+                    pocketeer::geom::Point::new(-a.center.x, a.center.y),
+                    a.radius,
+                    std::f64::consts::PI - a.start_angle,
+                    -a.sweep,
+                )),
+            })
+            .collect();
+        Contour::new(m).reversed()
+    };
+    let far = |c: &Contour| {
+        Contour::new(
+            c.segments
+                .iter()
+                .map(|s| s.translated(Vector::new(1e5, -1e5)))
+                .collect(),
+        )
+    };
+    let variants = [
+        ("rotated start", map(&base, &rotate_start)),
+        ("mirrored", map(&base, &mirror)),
+        ("translated by 1e5", map(&base, &far)),
+    ];
+    let tol = Tolerance::default();
+    let job = |p: &Pocket| {
+        let clear = ClearParams {
+            tool_radius: 3.0,
+            stepover: 4.8,
+            allowance: 0.0,
+        };
+        let link = LinkParams {
+            tool_radius: 3.0,
+            depth: 2.0,
+            step_down: 6.0,
+            safe_z: 5.0,
+            direction: Direction::Climb,
+            entry: Entry::Helix,
+            ramp_angle: 3f64.to_radians(),
+        };
+        let j = pocketeer::job::pocket_job(std::slice::from_ref(p), &clear, &link, &tol).unwrap();
+        let loops: usize = j.plans.iter().map(|p| p.loop_count()).sum();
+        let levels: Vec<f64> = j.plans[0]
+            .nodes
+            .iter()
+            .map(|n| n.outer.signed_area() + n.holes.iter().map(Contour::signed_area).sum::<f64>())
+            .collect();
+        (loops, levels.iter().sum::<f64>())
+    };
+    let (loops, area) = job(&base);
+    for (name, p) in &variants {
+        let (l, a) = job(p);
+        assert_eq!(l, loops, "{name}: loop count");
+        assert!(
+            (a - area).abs() <= 1e-6 * area.abs(),
+            "{name}: level areas {a} vs {area}"
+        );
+        let o = run(
+            std::slice::from_ref(p),
+            6.0,
+            4.8,
+            2.0,
+            Entry::Helix,
+            Dialect::Grbl,
+        );
+        assert_clean(&o, 2.0);
+    }
+}
