@@ -4,6 +4,10 @@
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
 use crate::union_find::UnionFind;
 
+/// How far inside the offset distance a joining chord may come and still close a loop, mm:
+/// far below any machining tolerance, far above rounding.
+const JOIN_SLACK: f64 = 1e-5;
+
 /// The original profile, indexed for distance queries.
 pub struct Profile {
     index: SegmentIndex,
@@ -44,8 +48,8 @@ impl Profile {
 ///
 /// Joining lines (`is_join`: the chords the raw offset puts where moved elements overlap or
 /// collapse) are no offset curve: their points are nearer than d to the joint, so the
-/// argument above does not hold along them. Each is a run of its own, judged by its own
-/// middle (a join of near-zero length, closing a loop, passes within the slack).
+/// argument above does not hold along them. A join coming more than `JOIN_SLACK` inside d is
+/// a run of its own, and invalid; a shorter one stays in its run.
 pub fn prune(
     pieces: Vec<Piece>,
     profile: &Profile,
@@ -60,7 +64,13 @@ pub fn prune(
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
         .collect();
-    let joins: Vec<bool> = pieces.iter().map(is_join).collect();
+    // A join whose middle is within JOIN_SLACK of the distance (a chord a few micrometres
+    // long where two moved elements almost meet) closes its loop as the elements would;
+    // any other join is judged alone, and is invalid.
+    let joins: Vec<bool> = pieces
+        .iter()
+        .map(|p| is_join(p) && profile.nearer_than(p.segment.point_at(0.5), d - JOIN_SLACK.min(0.5 * d)))
+        .collect();
     let run = runs(&pieces, &joins);
     // The longest piece of each run (runs are numbered by one of their pieces).
     let mut longest: Vec<usize> = vec![usize::MAX; pieces.len()];
