@@ -153,7 +153,7 @@ fn preview(
         .regions
         .pockets
         .iter()
-        .flat_map(|p| std::iter::once(p.boundary.clone()).chain(p.islands.iter().cloned()))
+        .flat_map(|p| p.contours().cloned())
         .collect();
     let polys = |shapes: &[Vec<Vec<[f64; 2]>>]| -> Vec<Contour> {
         shapes

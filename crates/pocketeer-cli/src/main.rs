@@ -129,7 +129,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
             .regions
             .pockets
             .iter()
-            .flat_map(|p| std::iter::once(p.boundary.clone()).chain(p.islands.iter().cloned()))
+            .flat_map(|p| p.contours().cloned())
             .collect();
         let doc = svg::svg_document(&[
             svg::Layer {

@@ -259,7 +259,7 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String 
         .regions
         .pockets
         .iter()
-        .flat_map(|p| std::iter::once(p.boundary.clone()).chain(p.islands.iter().cloned()))
+        .flat_map(|p| p.contours().cloned())
         .collect();
     let (feeds, rapids) = svg::toolpath_segments(&job.linked.toolpath);
     svg::svg_document(&[

@@ -1,11 +1,12 @@
 //! `check` on programs with known defects: it finds exactly the defects planted, and passes
 //! clean programs.
 
-use pocketeer::clear::ClearParams;
+mod common;
+
 use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
 use pocketeer::import::Pocket;
-use pocketeer::link::{Direction, Entry, LinkParams};
-use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::link::Entry;
+use pocketeer::post::{write_gcode, Dialect};
 use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
 
 fn pocket() -> Pocket {
@@ -35,33 +36,13 @@ fn our_program(pocket: &Pocket, stepover: f64) -> String {
 
 /// Our program and the warnings the job gave (plunges where no helix or ramp fits).
 fn our_program_and_warnings(pocket: &Pocket, stepover: f64) -> (String, Vec<String>) {
-    let tol = Tolerance::default();
-    let clear = ClearParams {
-        tool_radius: 3.0,
+    common::program::our_program(
+        std::slice::from_ref(pocket),
+        6.0,
         stepover,
-        allowance: 0.0,
-    };
-    let link = LinkParams {
-        tool_radius: 3.0,
-        depth: 2.0,
-        step_down: 6.0,
-        safe_z: 5.0,
-        direction: Direction::Climb,
-        entry: Entry::Helix,
-        ramp_angle: 3f64.to_radians(),
-    };
-    let job = pocketeer::job::pocket_job(std::slice::from_ref(pocket), &clear, &link, &tol).unwrap();
-    let settings = ProgramSettings {
-        units: ProgramUnits::Millimetres,
-        feed: 1000.0,
-        plunge_feed: 300.0,
-        spindle: 10000.0,
-        safe_z: 5.0,
-        header: vec![],
-    };
-    (
-        write_gcode(&job.linked.toolpath, &settings, Dialect::Grbl),
-        job.linked.warnings,
+        2.0,
+        Entry::Helix,
+        Dialect::Grbl,
     )
 }
 
@@ -177,8 +158,6 @@ fn feed_moves_before_any_feed_rate_and_plunges_are_reported() {
     assert_eq!(r.plunges[0].line, 4);
 }
 
-mod common;
-
 /// Plain contour-parallel loops at r + k·stepover, no clean-up: what most CAM does.
 fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> String {
     use pocketeer::toolpath::{Feed, Point3, Toolpath};
@@ -201,15 +180,7 @@ fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> 
             path.rapid(Point3::at(s, 5.0));
         }
     }
-    let settings = ProgramSettings {
-        units: ProgramUnits::Millimetres,
-        feed: 1000.0,
-        plunge_feed: 300.0,
-        spindle: 10000.0,
-        safe_z: 5.0,
-        header: vec![],
-    };
-    write_gcode(&path, &settings, Dialect::LinuxCnc)
+    write_gcode(&path, &common::program::settings(), Dialect::LinuxCnc)
 }
 
 #[test]

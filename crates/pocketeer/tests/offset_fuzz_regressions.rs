@@ -7,7 +7,8 @@
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
 use pocketeer::import::Pocket;
 
-fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
+/// The bulged polygon of the fuzz input, counter-clockwise (edges under 1 µm dropped).
+fn outline(vertices: &[(i16, i16, i8)]) -> Contour {
     let pts: Vec<(Point, f64)> = vertices
         .iter()
         .map(|&(x, y, b)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), b as f64 / 128.0))
@@ -24,7 +25,15 @@ fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) 
         })
         .collect();
     let c = Contour::new(segs);
-    let boundary = if c.is_ccw() { c } else { c.reversed() };
+    if c.is_ccw() {
+        c
+    } else {
+        c.reversed()
+    }
+}
+
+fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
+    let boundary = outline(vertices);
     let islands: Vec<Contour> = islands
         .iter()
         .map(|&(x, y, r)| {
@@ -41,8 +50,8 @@ fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) 
     let pocket = Pocket { boundary, islands };
     let d = 0.01 + distance as f64 / 1000.0;
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
-    let profile: Vec<Segment> = std::iter::once(&pocket.boundary)
-        .chain(&pocket.islands)
+    let profile: Vec<Segment> = pocket
+        .contours()
         .flat_map(|c| c.segments.iter().copied())
         .collect();
     for l in pocketeer::offset::offset_pocket(&pocket, d, &tol) {
@@ -165,21 +174,7 @@ fn needle_thin_outlines_at_a_hundredth() {
 
 /// The loops of `case`'s pocket at `d` (no invariant check).
 fn loops_of(vertices: &[(i16, i16, i8)], d: f64) -> Vec<Contour> {
-    let pts: Vec<(Point, f64)> = vertices
-        .iter()
-        .map(|&(x, y, b)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), b as f64 / 128.0))
-        .collect();
-    let n = pts.len();
-    let segs: Vec<Segment> = (0..n)
-        .map(|k| {
-            let ((a, b), (e, _)) = (pts[k], pts[(k + 1) % n]);
-            Arc::from_bulge(a, e, b)
-                .map(Segment::Arc)
-                .unwrap_or(Segment::Line(Line::new(a, e)))
-        })
-        .collect();
-    let c = Contour::new(segs);
-    let boundary = if c.is_ccw() { c } else { c.reversed() };
+    let boundary = outline(vertices);
     let pocket = Pocket {
         boundary,
         islands: vec![],

@@ -11,7 +11,7 @@ use pocketeer::geom::{Segment, Tolerance};
 use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::offset::{offset_pocket, Region};
-use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::post::Dialect;
 
 struct Outcome {
     gouge: f64,
@@ -32,38 +32,13 @@ fn run(
 ) -> Outcome {
     let tol = Tolerance::default();
     let r = 0.5 * diameter;
-    let clear = ClearParams {
-        tool_radius: r,
-        stepover,
-        allowance: 0.0,
-    };
-    let link = LinkParams {
-        tool_radius: r,
-        depth,
-        step_down: diameter,
-        safe_z: 5.0,
-        direction: Direction::Climb,
-        entry,
-        ramp_angle: 3f64.to_radians(),
-    };
-    let job = pocketeer::job::pocket_job(pockets, &clear, &link, &tol).expect("job");
-    let settings = ProgramSettings {
-        units: ProgramUnits::Millimetres,
-        feed: 1000.0,
-        plunge_feed: 300.0,
-        spindle: 10000.0,
-        safe_z: 5.0,
-        header: vec![],
-    };
-    let program = write_gcode(&job.linked.toolpath, &settings, dialect);
+    let (program, warnings) =
+        common::program::our_program(pockets, diameter, stepover, depth, entry, dialect);
     let moves = read(&program).expect("the program reads back");
     let prepared: Vec<(Region, Vec<Segment>, Vec<Segment>)> = pockets
         .iter()
         .map(|p| {
-            let walls = std::iter::once(&p.boundary)
-                .chain(&p.islands)
-                .flat_map(|c| c.segments.iter().copied())
-                .collect();
+            let walls = p.contours().flat_map(|c| c.segments.iter().copied()).collect();
             let centres = offset_pocket(p, r, &tol)
                 .iter()
                 .flat_map(|c| c.segments.iter().copied())
@@ -98,7 +73,7 @@ fn run(
         tested: m.tested,
         deepest: m.deepest,
         rapids_below_top: m.rapids_below_top,
-        warnings: job.linked.warnings.clone(),
+        warnings,
     }
 }
 

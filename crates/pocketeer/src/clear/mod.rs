@@ -82,6 +82,13 @@ pub struct Node {
     pub cleanups: Vec<Path>,
 }
 
+impl Node {
+    /// The outer loop, then the loops around islands.
+    pub fn loops(&self) -> impl Iterator<Item = &Contour> {
+        std::iter::once(&self.outer).chain(&self.holes)
+    }
+}
+
 /// The tree of loops that clears one pocket.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ClearPlan {

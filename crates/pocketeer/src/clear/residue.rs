@@ -61,10 +61,7 @@ pub fn add_cleanups(
             .get(k)
             .into_iter()
             .flatten()
-            .flat_map(|&i| {
-                let n = &plan.nodes[i];
-                std::iter::once(&n.outer).chain(&n.holes)
-            })
+            .flat_map(|&i| plan.nodes[i].loops())
             .flat_map(|c| c.segments.iter().copied())
             .collect()
     };

@@ -22,5 +22,6 @@ pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
 pub use point::{Point, Vector};
 pub use segment::Segment;
+pub(crate) use stitch::pieces_by_node;
 pub use stitch::{cluster_points, stitch, Piece};
 pub use tolerance::{Tolerance, DEFAULT_JOIN_TOLERANCE};

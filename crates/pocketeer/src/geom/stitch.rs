@@ -39,21 +39,8 @@ pub struct Piece {
 pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
     // Node ids are small integers (indices of some list): a vector indexed by them.
     let nodes = pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0);
-    // The pieces leaving each node: `by_start[first[n]..first[n + 1]]` (one array, not a list
-    // per node: node ids may run far beyond the number of pieces).
-    let mut first = vec![0usize; nodes + 1];
-    for p in pieces {
-        first[p.start + 1] += 1;
-    }
-    for n in 0..nodes {
-        first[n + 1] += first[n];
-    }
-    let mut fill = first.clone();
-    let mut by_start = vec![0usize; pieces.len()];
-    for (i, p) in pieces.iter().enumerate() {
-        by_start[fill[p.start]] = i;
-        fill[p.start] += 1;
-    }
+    // The pieces leaving each node: `by_start[first[n]..first[n + 1]]`.
+    let (first, by_start) = pieces_by_node(pieces, nodes, |p| p.start);
     let mut used = vec![false; pieces.len()];
     let mut loops = Vec::new();
     let mut lost = 0;
@@ -95,6 +82,31 @@ pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
         }
     }
     (loops, lost)
+}
+
+/// The pieces grouped by a node of theirs (`node_of`), as offsets into one array:
+/// `list[first[n]..first[n + 1]]` holds the pieces at node `n`. One array, not a list per
+/// node: node ids may run far beyond the number of pieces.
+pub(crate) fn pieces_by_node(
+    pieces: &[Piece],
+    nodes: usize,
+    node_of: impl Fn(&Piece) -> usize,
+) -> (Vec<usize>, Vec<usize>) {
+    let mut first = vec![0usize; nodes + 1];
+    for p in pieces {
+        first[node_of(p) + 1] += 1;
+    }
+    for n in 0..nodes {
+        first[n + 1] += first[n];
+    }
+    let mut fill = first.clone();
+    let mut list = vec![0usize; pieces.len()];
+    for (i, p) in pieces.iter().enumerate() {
+        let n = node_of(p);
+        list[fill[n]] = i;
+        fill[n] += 1;
+    }
+    (first, list)
 }
 
 /// How far left `next` turns after travelling along `incoming`: the turn angle (a reversal

@@ -53,6 +53,11 @@ pub struct Pocket {
 }
 
 impl Pocket {
+    /// The boundary, then the islands.
+    pub fn contours(&self) -> impl Iterator<Item = &Contour> {
+        std::iter::once(&self.boundary).chain(&self.islands)
+    }
+
     /// Area of material to remove: boundary area minus island areas.
     pub fn area(&self) -> f64 {
         self.boundary.signed_area() + self.islands.iter().map(Contour::signed_area).sum::<f64>()

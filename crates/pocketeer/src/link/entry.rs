@@ -44,22 +44,20 @@ pub fn find_helix(
         .flat_map(|&(p, n)| pushes.clone().map(move |u| p + n * u))
         .chain(std::iter::once(b.min.midpoint(b.max)));
     let mut best: Option<(Helix, f64)> = None;
-    {
-        for c in candidates {
-            let clearance = region.distance(c);
-            // A little less than the room there, for rounding.
-            let radius = ((clearance - tool_radius) * (1.0 - 1e-6)).min(preferred);
-            // The largest radius first, then the shortest way to the target.
-            let score = c.distance(target) - 1e3 * radius;
-            if clearance < part_distance || radius < smallest || best.is_some_and(|(_, s)| score >= s) {
-                continue;
-            }
-            // The containment tests last: the one on the part's outer loop is linear in its size.
-            if !region.contains(c) || !outer.contains(c) {
-                continue;
-            }
-            best = Some((Helix { center: c, radius }, score));
+    for c in candidates {
+        let clearance = region.distance(c);
+        // A little less than the room there, for rounding.
+        let radius = ((clearance - tool_radius) * (1.0 - 1e-6)).min(preferred);
+        // The largest radius first, then the shortest way to the target.
+        let score = c.distance(target) - 1e3 * radius;
+        if clearance < part_distance || radius < smallest || best.is_some_and(|(_, s)| score >= s) {
+            continue;
         }
+        // The containment tests last: the one on the part's outer loop is linear in its size.
+        if !region.contains(c) || !outer.contains(c) {
+            continue;
+        }
+        best = Some((Helix { center: c, radius }, score));
     }
     best.map(|(h, _)| h)
 }

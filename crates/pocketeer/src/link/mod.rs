@@ -235,7 +235,7 @@ impl<'a> Linker<'a> {
         let mut best: Option<(Point, f64)> = None;
         for &c in &node.children {
             let child = &plan.nodes[c];
-            for l in std::iter::once(&child.outer).chain(&child.holes) {
+            for l in child.loops() {
                 for s in &l.segments {
                     let p = crate::geom::closest_point(s, q);
                     let d = p.distance(q);
@@ -270,7 +270,7 @@ impl<'a> Linker<'a> {
             } else {
                 Vec::new()
             };
-            for h in std::iter::once(&n.outer).chain(&n.holes) {
+            for h in n.loops() {
                 samples.extend(entry::samples(&h.segments, 0.5 * p.tool_radius));
             }
             for c in &n.cleanups {

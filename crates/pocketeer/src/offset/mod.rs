@@ -38,9 +38,7 @@ pub struct Region {
 impl Region {
     /// Prepares `pocket` (boundary counter-clockwise, islands clockwise).
     pub fn new(pocket: &Pocket) -> Region {
-        let mut contours = vec![pocket.boundary.clone()];
-        contours.extend(pocket.islands.iter().cloned());
-        Region::from_contours(contours)
+        Region::from_contours(pocket.contours().cloned().collect())
     }
 
     /// Prepares the region on the left of `loops` (counter-clockwise around material,

@@ -1,6 +1,7 @@
 //! Throwing away invalid pieces (paper §6): a piece is kept only when it is nowhere closer than
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
+use crate::geom::pieces_by_node;
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
 use crate::union_find::UnionFind;
 
@@ -164,26 +165,8 @@ pub fn remove_dangling(pieces: Vec<Piece>) -> Vec<Piece> {
         outs[p.start] += 1;
         ins[p.end] += 1;
     }
-    // Pieces by start node and by end node, as offsets into one array each.
-    let by = |node_of: &dyn Fn(&Piece) -> usize| -> (Vec<usize>, Vec<usize>) {
-        let mut first = vec![0usize; nodes + 1];
-        for p in &pieces {
-            first[node_of(p) + 1] += 1;
-        }
-        for k in 0..nodes {
-            first[k + 1] += first[k];
-        }
-        let mut fill = first.clone();
-        let mut list = vec![0usize; pieces.len()];
-        for (i, p) in pieces.iter().enumerate() {
-            let n = node_of(p);
-            list[fill[n]] = i;
-            fill[n] += 1;
-        }
-        (first, list)
-    };
-    let (start_first, by_start) = by(&|p| p.start);
-    let (end_first, by_end) = by(&|p| p.end);
+    let (start_first, by_start) = pieces_by_node(&pieces, nodes, |p| p.start);
+    let (end_first, by_end) = pieces_by_node(&pieces, nodes, |p| p.end);
     let mut alive = vec![true; pieces.len()];
     let dangling = |p: &Piece, ins: &[u32], outs: &[u32]| ins[p.start] == 0 || outs[p.end] == 0;
     let mut queue: Vec<usize> = (0..pieces.len())

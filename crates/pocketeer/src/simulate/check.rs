@@ -102,11 +102,6 @@ pub struct CheckReport {
     pub swept: Vec<Shape>,
 }
 
-/// The path of a move seen from above.
-fn footprint(m: &ProgramMove) -> Segment {
-    m.footprint()
-}
-
 /// Checks `program` against `pockets` (see [`CheckReport`]).
 pub fn check_program(
     pockets: &[Pocket],
@@ -122,10 +117,7 @@ pub fn check_program(
     let walls: Vec<SegmentIndex> = pockets
         .iter()
         .map(|p| {
-            let segs: Vec<Segment> = std::iter::once(&p.boundary)
-                .chain(&p.islands)
-                .flat_map(|c| c.segments.iter().copied())
-                .collect();
+            let segs: Vec<Segment> = p.contours().flat_map(|c| c.segments.iter().copied()).collect();
             SegmentIndex::new(&segs)
         })
         .collect();
@@ -175,7 +167,7 @@ pub fn check_program(
         if m.from.z.min(m.to.z) >= 0.0 {
             continue;
         }
-        let seg = footprint(m);
+        let seg = m.footprint();
         // The pocket the move is in (by its middle), or the nearest when it is in none.
         let mid = seg.point_at(0.5);
         let owner = (0..pockets.len())
@@ -215,7 +207,7 @@ pub fn check_program(
         }
         // A feed move straight down below Z=0 must land where the tool has cut that deep.
         let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6 && m.to.z < m.from.z;
-        if vertical && m.to.z < 0.0 && !cut_before(&moves[..k], m.to, r) {
+        if vertical && m.to.z < 0.0 && !cut_before(&moves[..k], m.to) {
             report.plunges.push(place(m.to.xy()));
         }
     }
@@ -233,11 +225,10 @@ pub fn check_program(
 }
 
 /// True when a feed move before has passed within a micrometre of `p` at `p`'s depth or deeper.
-fn cut_before(before: &[ProgramMove], p: Point3, r: f64) -> bool {
-    let _ = r;
+fn cut_before(before: &[ProgramMove], p: Point3) -> bool {
     before.iter().any(|m| {
         m.motion != Motion::Rapid && {
-            let seg = footprint(m);
+            let seg = m.footprint();
             let d = crate::geom::point_distance(&seg, p.xy());
             d <= 1e-3 && {
                 let t = crate::geom::closest_param(&seg, p.xy());
@@ -258,7 +249,7 @@ fn swept(moves: &[ProgramMove], depth: f64, r: f64) -> Vec<Shape> {
             last_end = None;
             continue;
         }
-        let pts = super::polygon::flatten(&[footprint(m)], CHORD);
+        let pts = super::polygon::flatten(&[m.footprint()], CHORD);
         let continues = last_end.is_some_and(|e| e.distance(m.from) < 1e-9);
         match chains.last_mut() {
             Some(chain) if continues => chain.extend(pts.into_iter().skip(1)),

@@ -66,8 +66,7 @@ pub enum Motion {
     Rapid,
     /// G1.
     Line,
-    /// G2 (clockwise, `ccw` false) or G3, around `center` (XY), through `turns` extra full
-    /// turns never: a helix when Z changes.
+    /// G2 or G3 around `center` (XY); a helix when Z changes.
     Arc {
         /// Centre in XY.
         center: Point,
