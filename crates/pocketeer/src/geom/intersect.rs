@@ -156,29 +156,35 @@ pub fn line_line(l1: &Line, l2: &Line, eps: f64) -> Intersections {
     {
         return out;
     }
-    // Where l2 crosses the line of l1, snapped to an end that touches.
-    let u = if hc.abs() <= eps {
-        0.0
-    } else if hd.abs() <= eps {
-        1.0
-    } else {
-        clamp01(hc / (hc - hd))
+    // Where l2 crosses the line of l1 and l1 the line of l2, snapped to an end that lies on
+    // the other line. Lines meeting at a small angle can have an end within eps of the other
+    // line far from where they cross (h / sin of the angle): then the snapped points do not
+    // meet, and the crossing computed without snapping is the one.
+    let snapped = |h0: f64, h1: f64| {
+        if h0.abs() <= eps {
+            0.0
+        } else if h1.abs() <= eps {
+            1.0
+        } else {
+            clamp01(h0 / (h0 - h1))
+        }
     };
-    let t = if ha.abs() <= eps {
-        0.0
-    } else if hb.abs() <= eps {
-        1.0
-    } else {
-        clamp01(ha / (ha - hb))
-    };
-    let pa = l1.point_at(t);
-    let pb = l2.point_at(u);
-    if pa.distance(pb) <= 2.0 * eps {
-        out.push(Intersection::Point {
-            point: pa.midpoint(pb),
-            ta: t,
-            tb: u,
-        });
+    let crossing = |h0: f64, h1: f64| clamp01(h0 / (h0 - h1));
+    let candidates = [
+        (snapped(ha, hb), snapped(hc, hd)),
+        (crossing(ha, hb), crossing(hc, hd)),
+    ];
+    for (t, u) in candidates {
+        let pa = l1.point_at(t);
+        let pb = l2.point_at(u);
+        if pa.distance(pb) <= 2.0 * eps {
+            out.push(Intersection::Point {
+                point: pa.midpoint(pb),
+                ta: t,
+                tb: u,
+            });
+            break;
+        }
     }
     out
 }
@@ -234,32 +240,39 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
         return out;
     }
     let slack = eps / len;
-    let mut candidates = [None, None];
-    if h.abs() >= r - eps {
-        candidates[0] = Some(s);
+    // Within eps of tangency the touching point is the foot of the centre. When it lies off
+    // the line or the arc, the two crossings the exact geometry may still have, sqrt(2 r eps)
+    // apart at most, are tried instead: a near-tangent piece can end between them.
+    let k = ((r - h.abs()) * (r + h.abs())).max(0.0).sqrt() / len;
+    let tangent = h.abs() >= r - eps;
+    let groups: [&[f64]; 2] = if tangent {
+        [&[s], &[s - k, s + k]]
     } else {
-        let k = ((r - h.abs()) * (r + h.abs())).max(0.0).sqrt() / len;
-        candidates[0] = Some(s - k);
-        candidates[1] = Some(s + k);
-    }
-    for t in candidates.into_iter().flatten() {
-        let t = refine_on_line(l, c, t);
-        if t < -slack || t > 1.0 + slack {
-            continue;
+        [&[s - k, s + k], &[]]
+    };
+    for group in groups {
+        for &t in group {
+            let t = refine_on_line(l, c, t);
+            if t < -slack || t > 1.0 + slack {
+                continue;
+            }
+            let t = clamp01(t);
+            let p = l.point_at(t);
+            let angle = (p - c.center).angle();
+            if !c.contains_angle(angle, eps) {
+                continue;
+            }
+            // Clamping to the line's end moves the point by at most eps along the line.
+            if (p.distance(c.center) - r).abs() <= 2.0 * eps {
+                out.push(Intersection::Point {
+                    point: p,
+                    ta: t,
+                    tb: clamp01(c.param_of_angle(angle)),
+                });
+            }
         }
-        let t = clamp01(t);
-        let p = l.point_at(t);
-        let angle = (p - c.center).angle();
-        if !c.contains_angle(angle, eps) {
-            continue;
-        }
-        // Clamping to the line's end moves the point by at most eps along the line.
-        if (p.distance(c.center) - r).abs() <= 2.0 * eps {
-            out.push(Intersection::Point {
-                point: p,
-                ta: t,
-                tb: clamp01(c.param_of_angle(angle)),
-            });
+        if !out.is_empty() {
+            break;
         }
     }
     out
@@ -314,33 +327,46 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
         return out;
     }
     let u = v / d;
-    let mut pts = [None, None];
-    if (d - (r1 + r2)).abs() <= eps || (d - (r1 - r2).abs()).abs() <= eps {
-        // Tangent: the touching point lies on the line of centres.
-        let dir = if (d - (r1 + r2)).abs() <= eps || r1 >= r2 {
-            u
-        } else {
-            -u
-        };
-        pts[0] = Some(c1.center + dir * r1);
+    // The crossings measured from the smaller circle's centre: from the larger one, the
+    // height h above the line of centres loses precision as r / h when they meet at a
+    // shallow angle. Written to avoid cancellation between large squared radii.
+    let (c, r, ro, w) = if r1 <= r2 {
+        (c1.center, r1, r2, u)
     } else {
-        // Written to avoid cancellation between large squared radii.
-        let a = 0.5 * (d + (r1 - r2) * (r1 + r2) / d);
-        let h = ((r1 - a) * (r1 + a)).max(0.0).sqrt();
-        let base = c1.center + u * a;
-        pts[0] = Some(base + u.perp() * h);
-        pts[1] = Some(base - u.perp() * h);
-    }
-    for p in pts.into_iter().flatten() {
-        let p = refine_on_circles(c1, c2, p);
-        let a1 = (p - c1.center).angle();
-        let a2 = (p - c2.center).angle();
-        if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {
-            out.push(Intersection::Point {
-                point: p,
-                ta: clamp01(c1.param_of_angle(a1)),
-                tb: clamp01(c2.param_of_angle(a2)),
-            });
+        (c2.center, r2, r1, -u)
+    };
+    let a = 0.5 * (d + (r - ro) * (r + ro) / d);
+    let h = ((r - a) * (r + a)).max(0.0).sqrt();
+    let base = c + w * a;
+    let crossings = [base + w.perp() * h, base - w.perp() * h];
+    // Within eps of tangency the touching point lies on the line of centres; when it lies off
+    // either arc, the two crossings the exact geometry may still have are tried instead (see
+    // `line_arc`).
+    let tangent = [if (d - (r1 + r2)).abs() <= eps || r1 >= r2 {
+        c1.center + u * r1
+    } else {
+        c1.center - u * r1
+    }];
+    let groups: [&[Point]; 2] = if (d - (r1 + r2)).abs() <= eps || (d - (r1 - r2).abs()).abs() <= eps {
+        [&tangent, &crossings]
+    } else {
+        [&crossings, &[]]
+    };
+    for group in groups {
+        for &p in group {
+            let p = refine_on_circles(c1, c2, p);
+            let a1 = (p - c1.center).angle();
+            let a2 = (p - c2.center).angle();
+            if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {
+                out.push(Intersection::Point {
+                    point: p,
+                    ta: clamp01(c1.param_of_angle(a1)),
+                    tb: clamp01(c2.param_of_angle(a2)),
+                });
+            }
+        }
+        if !out.is_empty() {
+            break;
         }
     }
     out
@@ -488,6 +514,48 @@ mod tests {
                 assert!((b.0 - 1.0).abs() < 1e-12 && b.1.abs() < 1e-12);
             }
             other => panic!("expected overlap, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn near_tangent_line_crossing_off_the_foot_is_found() {
+        // A line passing 5e-10 inside a circle of radius 0.01 (within eps of tangency) crosses
+        // it 3.2e-6 either side of the foot; the arc starts past the foot and holds only the
+        // crossing on one side.
+        let c = Arc::new(Point::new(0.0, 0.0), 0.01, 1e-4, 0.5);
+        let x = 0.01 - 5e-10;
+        let foot_y = -3.0e-6;
+        let l = Line::new(Point::new(x, foot_y), Point::new(x, 1.0));
+        let hits = line_arc(&l, &c, EPS);
+        assert_eq!(hits.len(), 1);
+        let first = hits.iter().next();
+        match first {
+            Some(Intersection::Point { point, .. }) => {
+                assert!((point.distance(c.center) - 0.01).abs() < 1e-12, "{point:?}");
+                assert!((point.y - (1e-4f64 - x * x).sqrt()).abs() < 1e-9, "{point:?}");
+            }
+            other => panic!("expected a point, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn circles_of_very_different_radii_meet_on_both() {
+        // Radius 9178 against 0.01 at a shallow angle: the point must lie on the small circle
+        // too, not 1e-6 off it.
+        let big = Arc::new(
+            Point::new(9177.91501953125, -56.630292968749984),
+            9178.43385118847,
+            3.0998,
+            0.0312,
+        );
+        let small = Arc::new(Point::new(0.01, 40.96), 0.01, 3.14151, -0.0262);
+        let hits = arc_arc(&big, &small, EPS);
+        assert!(!hits.is_empty());
+        for h in hits.iter() {
+            if let Intersection::Point { point, .. } = h {
+                assert!((point.distance(big.center) - big.radius).abs() < 1e-9);
+                assert!((point.distance(small.center) - small.radius).abs() < 1e-12);
+            }
         }
     }
 }

@@ -47,7 +47,7 @@ pub fn raw_offset(
             meets[i] = true;
             continue;
         }
-        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j]) || n < 2 {
+        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j], d, tol.eps) || n < 2 {
             continue;
         }
         let corner = segs[k].end();
@@ -102,7 +102,7 @@ pub fn raw_offset(
             end,
             source: (base + k) as u32,
         });
-        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j]) {
+        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j], d, tol.eps) {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
             let a0 = (a.end() - corner).angle();
@@ -125,11 +125,30 @@ pub fn raw_offset(
     (pieces, next_node)
 }
 
-/// True when the contour turns right (or straight back) from `a` into `b`.
-fn right_turn(a: &Segment, b: &Segment) -> bool {
+/// True when the contour turns right from `a` into `b`, or turns back in a joint that opens to
+/// the right at the scale of the offset, or cannot be told.
+///
+/// At a turn sharper than a right angle, the tangents alone do not tell a needle of material
+/// (a left turn: the moved elements overlap) from a slit into it (a right turn: they part
+/// around the joint) when the elements curve: near a reversal, rounding even decides the sign
+/// of their cross product. There the side is taken from where `b` lies against `a` at an arc
+/// length `s` from the joint (the smaller of `d` and the elements' lengths). When that cannot
+/// be told either (two lines running straight back), the joint is taken as a right turn: its
+/// node arc is an exact offset of the joint, where a joining chord would pass through it.
+fn right_turn(a: &Segment, b: &Segment, d: f64, eps: f64) -> bool {
     let (t_in, t_out) = (a.tangent_at(1.0), b.tangent_at(0.0));
     let c = t_in.cross(t_out);
-    c < 0.0 || (c == 0.0 && t_in.dot(t_out) < 0.0)
+    if t_in.dot(t_out) >= 0.0 {
+        return c < 0.0;
+    }
+    let (la, lb) = (a.length(), b.length());
+    let s = d.min(la).min(lb);
+    if s.is_nan() || s <= 0.0 {
+        return c <= 0.0;
+    }
+    // How far left of `a`'s direction b's point lies beyond a's point at the same distance.
+    let lateral = t_in.cross(b.point_at(s / lb) - a.point_at(1.0 - s / la));
+    lateral <= eps
 }
 
 /// One element moved by `d` to its left; `None` when it collapses to a point.
@@ -190,5 +209,23 @@ mod tests {
         let s0 = &contour.segments[0];
         let left = s0.start() + s0.tangent_at(0.0).perp() * 2.0;
         assert!(left.distance(pieces[0].segment.start()) < 1e-12);
+    }
+
+    #[test]
+    fn a_cusp_is_a_needle_or_a_slit_by_where_the_elements_go() {
+        let p = Point::new;
+        // In along +x to the origin, back along a small arc that curves away below (a slit:
+        // material all around the joint) or above (a needle of material).
+        let a = Segment::Line(Line::new(p(-10.0, 0.0), p(0.0, 0.0)));
+        let below = Segment::Arc(Arc::new(p(0.0, -1.0), 1.0, PI / 2.0, 1.0));
+        let above = Segment::Arc(Arc::new(p(0.0, 1.0), 1.0, -PI / 2.0, -1.0));
+        assert!(right_turn(&a, &below, 0.5, 1e-9));
+        assert!(!right_turn(&a, &above, 0.5, 1e-9));
+        // Straight back along a line: cannot be told, taken as a right turn.
+        let back = Segment::Line(Line::new(p(0.0, 0.0), p(-5.0, 0.0)));
+        assert!(right_turn(&a, &back, 0.5, 1e-9));
+        // An ordinary sharp left turn (a 150° star tip).
+        let tip = Segment::Line(Line::new(p(0.0, 0.0), p(-5.0, 2.0)));
+        assert!(!right_turn(&a, &tip, 0.5, 1e-9));
     }
 }
