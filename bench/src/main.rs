@@ -100,7 +100,7 @@ fn main() {
         // All levels in one call: on both cores, deeper levels from the sources of shallower.
         let (ours, our_area) = time(reps, || {
             region
-                .offset_levels(&case.distances, &tol)
+                .offset_levels(&case.distances, &tol).unwrap()
                 .iter()
                 .flatten()
                 .map(Contour::signed_area)

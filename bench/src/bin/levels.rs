@@ -21,7 +21,7 @@ fn main() {
     let shape = Shape::from_plines([p]);
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
     for &d in &case.distances {
-        let ours = pocketeer::offset::offset_pocket(&pocket, d, &tol);
+        let ours = pocketeer::offset::offset_pocket(&pocket, d, &tol).unwrap();
         let theirs = shape.parallel_offset(d, &ShapeOffsetOptions::default());
         let a: f64 = ours.iter().map(Contour::signed_area).sum();
         let b: f64 = theirs

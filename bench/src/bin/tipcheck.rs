@@ -16,7 +16,7 @@ fn main() {
     let pocket = pocketeer_bench::pocket(&case);
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
     let d = 30.0;
-    let loops = pocketeer::offset::offset_pocket(&pocket, d, &tol);
+    let loops = pocketeer::offset::offset_pocket(&pocket, d, &tol).unwrap();
     let segs = &loops[0].segments;
     let profile = SegmentIndex::new(&pocket.boundary.segments);
     // Corners: joints where the direction turns by more than 0.2 rad.

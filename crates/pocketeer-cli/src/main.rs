@@ -109,12 +109,24 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     use pocketeer::export::{dxf, svg};
     let analysis = read_analysis(&args.drawing)?;
     let tol = &analysis.tolerance;
-    let loops: Vec<pocketeer::geom::Contour> = analysis
-        .regions
-        .pockets
-        .iter()
-        .flat_map(|p| pocketeer::offset::offset_pocket(p, args.distance, tol))
-        .collect();
+    let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
+    for (k, p) in analysis.regions.pockets.iter().enumerate() {
+        let offset = pocketeer::offset::offset_pocket(p, args.distance, tol).map_err(|e| {
+            let s = p
+                .boundary
+                .segments
+                .first()
+                .map_or(pocketeer::geom::Point::new(0.0, 0.0), |s| s.start());
+            Failure(format!(
+                "{}: pocket {} (outline through ({:.4}, {:.4}) mm): {e}",
+                args.drawing.file.display(),
+                k + 1,
+                s.x,
+                s.y
+            ))
+        })?;
+        loops.extend(offset);
+    }
     let layered: Vec<dxf::LayeredContour> = loops
         .iter()
         .map(|c| dxf::LayeredContour {

@@ -222,7 +222,8 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         };
         let read = pocketeer::simulate::read_program(&program)
             .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
-        let report = pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, tol);
+        let report = pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, tol)
+            .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
         eprint!("{}", crate::check::to_text(&report, &params));
         if !report.passed {
             return Err(Failure(format!(

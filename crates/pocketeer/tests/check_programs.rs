@@ -54,7 +54,7 @@ fn check(pocket: &Pocket, program: &str) -> CheckReport {
         gouge_tolerance: 0.01,
         leftover_tolerance: 0.05,
     };
-    check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default())
+    check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default()).unwrap()
 }
 
 #[test]
@@ -165,7 +165,7 @@ fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> 
     let region = pocketeer::offset::Region::new(pocket);
     let distances: Vec<f64> = (0..200).map(|k| r + k as f64 * stepover).collect();
     let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
-    for level in region.offset_levels(&distances, &tol).iter().rev() {
+    for level in region.offset_levels(&distances, &tol).unwrap().iter().rev() {
         for l in level {
             let s = l.segments[0].start();
             path.rapid(Point3::at(s, 5.0));
@@ -255,6 +255,7 @@ fn a_wall_pass_0_011_too_close_fails_and_0_005_passes_the_gouge_tolerance() {
             &params,
             &Tolerance::default(),
         )
+        .unwrap()
     };
     let over = run(2.989);
     assert!((over.gouge - 0.011).abs() < 1e-9, "{}", over.gouge);

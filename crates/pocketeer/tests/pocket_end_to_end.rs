@@ -40,6 +40,7 @@ fn run(
         .map(|p| {
             let walls = p.contours().flat_map(|c| c.segments.iter().copied()).collect();
             let centres = offset_pocket(p, r, &tol)
+                .unwrap()
                 .iter()
                 .flat_map(|c| c.segments.iter().copied())
                 .collect();

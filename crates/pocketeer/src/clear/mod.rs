@@ -48,6 +48,9 @@ pub enum ClearError {
         /// The largest number allowed.
         limit: usize,
     },
+    /// An offset of the pocket cannot be computed.
+    #[error(transparent)]
+    Offset(#[from] crate::offset::OffsetError),
 }
 
 /// The most levels one pocket may have: a million loops is hours of machining already.
@@ -143,12 +146,12 @@ pub fn plan_region(
     // No point of the pocket is farther from its boundary than half its smaller extent.
     let depth = 0.5 * bbox.width().min(bbox.height());
     let distances = levels::level_distances(params, depth)?;
-    let (loops, sources): (Vec<_>, Vec<_>) = crate::offset::offsets_until_empty(region, &distances, tol)
+    let (loops, sources): (Vec<_>, Vec<_>) = crate::offset::offsets_until_empty(region, &distances, tol)?
         .into_iter()
         .unzip();
     let distances = distances[..loops.len()].to_vec();
     let mut plan = tree::build(loops, &distances);
-    residue::add_cleanups(&mut plan, region, &sources, params, tol);
+    residue::add_cleanups(&mut plan, region, &sources, params, tol)?;
     Ok(plan)
 }
 

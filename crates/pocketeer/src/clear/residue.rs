@@ -16,7 +16,7 @@
 use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance, Vector};
-use crate::offset::{Region, Sources};
+use crate::offset::{OffsetError, Region, Sources};
 use std::sync::Arc;
 
 /// Adds to each part of `plan` the clean-up paths for the gap below it.
@@ -26,7 +26,7 @@ pub fn add_cleanups(
     sources: &[Arc<Sources>],
     params: &ClearParams,
     tol: &Tolerance,
-) {
+) -> Result<(), OffsetError> {
     let r = params.tool_radius;
     let levels = plan.distances.len();
     let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels];
@@ -46,7 +46,7 @@ pub fn add_cleanups(
         .filter(|&k| nominal(k) - plan.distances[k] > r)
         .collect();
     if gaps.is_empty() {
-        return;
+        return Ok(());
     }
     let half: Vec<(f64, usize)> = gaps
         .iter()
@@ -54,8 +54,12 @@ pub fn add_cleanups(
         .collect();
     // Each half level from the sources of the level just outside it.
     let half_loops = parallel(&half, |(d, k)| {
-        region.offset_after(d, tol, sources.get(k).map(|s| &**s)).0
-    });
+        region
+            .offset_after(d, tol, sources.get(k).map(|s| &**s))
+            .map(|l| l.0)
+    })
+    .into_iter()
+    .collect::<Result<Vec<_>, _>>()?;
     let loops_of = |k: usize| -> Vec<Segment> {
         by_level
             .get(k)
@@ -89,6 +93,7 @@ pub fn add_cleanups(
     for (owner, path) in found {
         plan.nodes[owner].cleanups.push(path);
     }
+    Ok(())
 }
 
 /// `f` over `inputs` on every core, results in order.

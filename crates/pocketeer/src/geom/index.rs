@@ -69,10 +69,8 @@ impl BoxIndex {
     }
 }
 
-/// The pairs `(i, j)`, `i < j`, of `boxes` that overlap (touching counts), sorted: a sweep
-/// along the axis where the boxes are thinnest relative to the whole extent. For the rings
-/// of small pieces an offset makes, few boxes are open at once, and this is several times
-/// cheaper than building an R-tree to walk it against itself.
+/// The pairs `(i, j)`, `i < j`, of `boxes` that overlap (touching counts), sorted: see
+/// [`for_each_overlapping_pair`].
 ///
 /// ```
 /// use pocketeer::geom::{overlapping_pairs, Aabb, Point};
@@ -81,6 +79,46 @@ impl BoxIndex {
 /// assert_eq!(overlapping_pairs(&boxes), vec![(0, 1)]);
 /// ```
 pub fn overlapping_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    // Without a budget the sweep runs to the end.
+    let _ = for_each_overlapping_pair(boxes, u64::MAX, |i, j| {
+        out.push((i, j));
+        true
+    });
+    out.sort_unstable();
+    out
+}
+
+/// Calls `f(i, j)` once for every pair of `boxes` that overlap (touching counts), in the
+/// order of a sweep along the axis where the boxes are thinnest relative to the whole extent.
+/// For the rings of small pieces an offset makes, few boxes are open at once, and this is
+/// several times cheaper than building an R-tree to walk it against itself.
+///
+/// The sweep compares each box with those still open; when that would take more than
+/// `budget` comparisons, or when `f` returns `false`, it stops and returns `Err` with the
+/// number of comparisons made and the box it stopped at. The comparisons bound both the
+/// sweep's time and the number of pairs.
+///
+/// ```
+/// use pocketeer::geom::{for_each_overlapping_pair, Aabb, Point};
+/// let b = |x0, y0, x1, y1| Aabb::from_points(Point::new(x0, y0), Point::new(x1, y1));
+/// // Twenty boxes all overlapping: 190 pairs.
+/// let boxes: Vec<Aabb> = (0..20).map(|k| b(k as f64, 0.0, 100.0, 1.0)).collect();
+/// let mut pairs = 0;
+/// let count = |_, _| {
+///     pairs += 1;
+///     true
+/// };
+/// assert!(for_each_overlapping_pair(&boxes, 1000, count).is_ok());
+/// assert_eq!(pairs, 190);
+/// assert!(for_each_overlapping_pair(&boxes, 100, |_, _| true).is_err());
+/// assert!(for_each_overlapping_pair(&boxes, 1000, |_, _| false).is_err());
+/// ```
+pub fn for_each_overlapping_pair(
+    boxes: &[Aabb],
+    budget: u64,
+    mut f: impl FnMut(usize, usize) -> bool,
+) -> Result<(), (u64, usize)> {
     let total = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
     let (sum_w, sum_h) = boxes
         .iter()
@@ -99,20 +137,23 @@ pub fn overlapping_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_unstable_by(|&a, &b| spans[a][0].total_cmp(&spans[b][0]));
     let mut open: Vec<usize> = Vec::new();
-    let mut out = Vec::new();
+    let mut tests: u64 = 0;
     for &i in &order {
         let b = spans[i];
+        tests += open.len() as u64;
+        if tests > budget {
+            return Err((tests, i));
+        }
         open.retain(|&j| spans[j][1] >= b[0]);
         for &j in &open {
             let o = spans[j];
-            if o[2] <= b[3] && b[2] <= o[3] {
-                out.push((i.min(j), i.max(j)));
+            if o[2] <= b[3] && b[2] <= o[3] && !f(i.min(j), i.max(j)) {
+                return Err((tests, i));
             }
         }
         open.push(i);
     }
-    out.sort_unstable();
-    out
+    Ok(())
 }
 
 /// A segment filed in an R-tree by its bounding box (computed once: the tree asks often).

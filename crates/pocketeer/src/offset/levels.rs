@@ -1,7 +1,7 @@
 //! Many offsets of one region at once, on every core: each level is an offset of the original
 //! region, the deeper ones offsetting only the sources of one already done.
 
-use super::{Region, Sources};
+use super::{OffsetError, Region, Sources};
 use crate::geom::{Contour, Tolerance};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -12,8 +12,13 @@ type Level = (Vec<Contour>, Arc<Sources>);
 
 /// The loops at each of `distances` in turn, up to (not including) the first empty level, with
 /// the sources of each level's loops. Each level is offset from the sources of the deepest
-/// level already done below it (see [`Region::offset_after`]).
-pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) -> Vec<Level> {
+/// level already done below it (see [`Region::offset_after`]). The first error met ends the
+/// work on every core.
+pub fn offsets_until_empty(
+    region: &Region,
+    distances: &[f64],
+    tol: &Tolerance,
+) -> Result<Vec<Level>, OffsetError> {
     // Threads cost tens of microseconds to start: small jobs run on this one.
     let elements: usize = region.contours.iter().map(|c| c.segments.len()).sum();
     let workers = if elements * distances.len() < 20_000 {
@@ -27,6 +32,7 @@ pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) 
     // Index of the first empty level found so far: nothing at or beyond it is needed.
     let limit = AtomicUsize::new(distances.len());
     let done: Mutex<BTreeMap<usize, Level>> = Mutex::new(BTreeMap::new());
+    let failed: Mutex<Option<OffsetError>> = Mutex::new(None);
     let work = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         if k >= limit.load(Ordering::Relaxed) {
@@ -36,7 +42,16 @@ pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) 
             .lock()
             .ok()
             .and_then(|d| d.range(..k).next_back().map(|(_, (_, s))| Arc::clone(s)));
-        let (loops, sources) = region.offset_after(distances[k], tol, smaller.as_deref());
+        let (loops, sources) = match region.offset_after(distances[k], tol, smaller.as_deref()) {
+            Ok(level) => level,
+            Err(e) => {
+                limit.store(0, Ordering::Relaxed);
+                if let Ok(mut f) = failed.lock() {
+                    f.get_or_insert(e);
+                }
+                break;
+            }
+        };
         if loops.is_empty() {
             limit.fetch_min(k, Ordering::Relaxed);
             break;
@@ -54,10 +69,14 @@ pub fn offsets_until_empty(region: &Region, distances: &[f64], tol: &Tolerance) 
             }
         });
     }
+    if let Some(e) = failed.into_inner().ok().flatten() {
+        return Err(e);
+    }
     let limit = limit.into_inner();
     let done = done.into_inner().unwrap_or_default();
-    done.into_iter()
+    Ok(done
+        .into_iter()
         .filter(|(k, _)| *k < limit)
         .map(|(_, v)| v)
-        .collect()
+        .collect())
 }

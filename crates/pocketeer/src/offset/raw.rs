@@ -47,7 +47,7 @@ pub fn raw_offset(
             meets[i] = true;
             continue;
         }
-        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j], d, tol.eps) || n < 2 {
+        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j], d) || n < 2 {
             continue;
         }
         let corner = segs[k].end();
@@ -102,7 +102,7 @@ pub fn raw_offset(
             end,
             source: (base + k) as u32,
         });
-        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j], d, tol.eps) {
+        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j], d) {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
             let a0 = (a.end() - corner).angle();
@@ -125,33 +125,46 @@ pub fn raw_offset(
     (pieces, next_node)
 }
 
-/// True when the contour turns right from `a` into `b`, or turns back in a joint that opens to
-/// the right at the scale of the offset, or cannot be told.
+/// True when the contour turns right from `a` into `b`, or turns straight back in a cusp that
+/// opens to the right at the scale of the offset, or cannot be told.
 ///
-/// At a turn sharper than a right angle, the tangents alone do not tell a needle of material
-/// (a left turn: the moved elements overlap) from a slit into it (a right turn: they part
-/// around the joint) when the elements curve: near a reversal, rounding even decides the sign
-/// of their cross product. There the side is taken from where `b` lies against `a` at an arc
-/// length `s` from the joint (the smaller of `d` and the elements' lengths). When that cannot
-/// be told either (two lines running straight back), the joint is taken as a right turn: its
-/// node arc is an exact offset of the joint, where a joining chord would pass through it.
-fn right_turn(a: &Segment, b: &Segment, d: f64, eps: f64) -> bool {
+/// Near a reversal the tangents alone do not tell a needle of material (a left turn: the moved
+/// elements overlap) from a slit into it (a right turn: they part around the joint): rounding
+/// decides the sign of their cross product `c`, or the elements curve apart a hair beyond the
+/// joint. There the side is taken from where `b` lies against `a` at an arc length `s` from
+/// the joint (the smaller of `d` and the elements' lengths), to second order
+/// `c s - (κa + κb) s² / 2` to the left (κ: signed curvatures). When that cannot be told
+/// either (two lines running straight back), the joint is taken as a right turn: its node arc
+/// is an exact offset of the joint, where a joining chord would pass through it. Away from
+/// reversals the tangents decide: an element that curls round far from the joint says nothing
+/// about the joint itself.
+fn right_turn(a: &Segment, b: &Segment, d: f64) -> bool {
     let (t_in, t_out) = (a.tangent_at(1.0), b.tangent_at(0.0));
     let c = t_in.cross(t_out);
-    if t_in.dot(t_out) >= 0.0 {
+    if t_in.dot(t_out) >= 0.0 || c.abs() > NEAR_REVERSAL {
         return c < 0.0;
     }
-    let (la, lb) = (a.length(), b.length());
-    let s = d.min(la).min(lb);
-    if s.is_nan() || s <= 0.0 {
-        return c <= 0.0;
-    }
-    // How far left of `a`'s direction b's point lies beyond a's point at the same distance.
-    let lateral = t_in.cross(b.point_at(s / lb) - a.point_at(1.0 - s / la));
-    lateral <= eps
+    let s = d.min(a.length()).min(b.length());
+    let lateral = c * s - (curvature(a) + curvature(b)) * s * s / 2.0;
+    // Rounding of unit tangents is a few 1e-16; below that the side cannot be told.
+    lateral.is_nan() || lateral <= 1e-12 * s
 }
 
-/// One element moved by `d` to its left; `None` when it collapses to a point.
+/// Sine of the angle from a full reversal below which a joint's side is taken from the
+/// elements' curvature as well as their tangents (about half a degree).
+const NEAR_REVERSAL: f64 = 0.01;
+
+/// Signed curvature of a segment: 1/radius for a counter-clockwise arc, negative for a
+/// clockwise one, 0 for a line.
+fn curvature(s: &Segment) -> f64 {
+    match s {
+        Segment::Line(_) => 0.0,
+        Segment::Arc(a) => a.sweep.signum() / a.radius,
+    }
+}
+
+/// One element moved by `d` to its left: an arc offset onto its centre becomes that point (a
+/// line of no length); `None` for a line of no length.
 fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
     match s {
         Segment::Line(l) => {
@@ -162,7 +175,10 @@ fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
             // Left of a counter-clockwise arc is towards its centre.
             let r = if a.sweep > 0.0 { a.radius - d } else { a.radius + d };
             if r.abs() <= 10.0 * tol.eps {
-                return None;
+                // Offset onto its centre: a point, kept (as a line of no length) so that the
+                // joints on either side still get their node arcs through it; split contracts
+                // it into one node.
+                return Some(Segment::Line(Line::new(a.center, a.center)));
             }
             if r > 0.0 {
                 Some(Segment::Arc(Arc::new(a.center, r, a.start_angle, a.sweep)))
@@ -219,13 +235,13 @@ mod tests {
         let a = Segment::Line(Line::new(p(-10.0, 0.0), p(0.0, 0.0)));
         let below = Segment::Arc(Arc::new(p(0.0, -1.0), 1.0, PI / 2.0, 1.0));
         let above = Segment::Arc(Arc::new(p(0.0, 1.0), 1.0, -PI / 2.0, -1.0));
-        assert!(right_turn(&a, &below, 0.5, 1e-9));
-        assert!(!right_turn(&a, &above, 0.5, 1e-9));
+        assert!(right_turn(&a, &below, 0.5));
+        assert!(!right_turn(&a, &above, 0.5));
         // Straight back along a line: cannot be told, taken as a right turn.
         let back = Segment::Line(Line::new(p(0.0, 0.0), p(-5.0, 0.0)));
-        assert!(right_turn(&a, &back, 0.5, 1e-9));
+        assert!(right_turn(&a, &back, 0.5));
         // An ordinary sharp left turn (a 150° star tip).
         let tip = Segment::Line(Line::new(p(0.0, 0.0), p(-5.0, 2.0)));
-        assert!(!right_turn(&a, &tip, 0.5, 1e-9));
+        assert!(!right_turn(&a, &tip, 0.5));
     }
 }

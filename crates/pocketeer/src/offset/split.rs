@@ -1,7 +1,9 @@
 //! Breaking the raw offset (paper §5): every piece is cut where it meets another, found through
 //! a spatial index, so that afterwards no two pieces cross.
 
-use crate::geom::{intersect, overlapping_pairs, Aabb, Intersection, Line, Piece, Point, Segment, Tolerance};
+use crate::geom::{
+    for_each_overlapping_pair, intersect, Aabb, Intersection, Line, Piece, Point, Segment, Tolerance,
+};
 use crate::union_find::UnionFind;
 
 /// Node ids, united where pieces meet.
@@ -10,9 +12,42 @@ pub type Nodes = UnionFind;
 /// A cut: where on the piece (parameter), which node, and the point.
 type Cut = (f64, usize, Point);
 
+/// How far [`split`] got before giving up.
+#[derive(Debug, Clone, Copy)]
+pub struct Overrun {
+    /// Box comparisons made.
+    pub tests: u64,
+    /// Crossings found.
+    pub crossings: usize,
+    /// The piece reached.
+    pub at: usize,
+}
+
 /// Cuts every piece where it meets another. Pieces meeting at a cut share its node; a cut at a
 /// piece's end is that end's node.
-pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece> {
+///
+/// Gives up when finding the pairs to intersect would take more than `budget.0` box
+/// comparisons or the pieces cross more than `budget.1` times (pieces overlapping by the
+/// thousand: a profile with sharp detail much finer than the distance), returning the
+/// [`Overrun`].
+pub fn split(
+    pieces: &[Piece],
+    nodes: &mut Nodes,
+    tol: &Tolerance,
+    budget: (u64, usize),
+) -> Result<Vec<Piece>, Overrun> {
+    let near_end = 10.0 * tol.eps;
+    // A piece shorter than that is a point where the pieces before and after it meet: its
+    // ends become one node.
+    for p in pieces.iter().filter(|p| p.segment.length() <= near_end) {
+        nodes.union(p.start, p.end);
+    }
+    let pieces: Vec<Piece> = pieces
+        .iter()
+        .filter(|p| p.segment.length() > near_end)
+        .copied()
+        .collect();
+    let pieces = &pieces[..];
     let boxes: Vec<Aabb> = pieces
         .iter()
         .map(|p| p.segment.bbox().inflated(tol.eps))
@@ -20,7 +55,6 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
     // All cuts in one list, (piece, cut), sorted afterwards: far fewer allocations than a
     // list per piece.
     let mut cuts: Vec<(usize, Cut)> = Vec::new();
-    let near_end = 10.0 * tol.eps;
     // The node for parameter t on piece i: its end node when t is at an end, else None.
     let end_node = |i: usize, t: f64| -> Option<usize> {
         let len = pieces[i].segment.length();
@@ -32,7 +66,7 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
             None
         }
     };
-    for (i, j) in overlapping_pairs(&boxes) {
+    let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
         let hits = intersect(&pieces[i].segment, &pieces[j].segment, tol.eps);
         for h in hits.iter() {
             let meets: Vec<(f64, f64, Point)> = match h {
@@ -59,6 +93,14 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
                 }
             }
         }
+        cuts.len() <= budget.1.saturating_mul(2)
+    });
+    if let Err((tests, at)) = sweep {
+        return Err(Overrun {
+            tests,
+            crossings: cuts.len() / 2,
+            at,
+        });
     }
     cuts.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1 .0.total_cmp(&b.1 .0)));
     let mut out = Vec::with_capacity(pieces.len() + cuts.len());
@@ -90,7 +132,7 @@ pub fn split(pieces: &[Piece], nodes: &mut Nodes, tol: &Tolerance) -> Vec<Piece>
             prev = cut;
         }
     }
-    out
+    Ok(out)
 }
 
 /// The part of `s` between two cuts, a line ending exactly on the cut points.

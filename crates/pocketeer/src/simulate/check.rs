@@ -5,7 +5,7 @@ use super::gcode::{Motion, Program, ProgramMove};
 use super::polygon::{largest_inscribed_circle, ring, shape_area, Shape};
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance};
 use crate::import::Pocket;
-use crate::offset::Region;
+use crate::offset::{OffsetError, Region};
 use crate::toolpath::Point3;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -108,7 +108,7 @@ pub fn check_program(
     program: &Program,
     params: &CheckParams,
     tol: &Tolerance,
-) -> CheckReport {
+) -> Result<CheckReport, OffsetError> {
     let r = params.tool_radius;
     let moves = &program.moves;
     let deepest = moves.iter().map(|m| m.to.z.min(m.from.z)).fold(0.0, f64::min);
@@ -213,7 +213,7 @@ pub fn check_program(
     }
     report.swept = swept(moves, final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
-        let pc = pocket_check(p, &regions[i], &report.swept, gouges[i], r, tol);
+        let pc = pocket_check(p, &regions[i], &report.swept, gouges[i], r, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
         report.thickest = report.thickest.max(pc.thickest);
         report.pockets.push(pc);
@@ -221,7 +221,7 @@ pub fn check_program(
     report.passed = report.gouge <= params.gouge_tolerance
         && report.thickest <= params.leftover_tolerance
         && report.rapids_below_top.is_empty();
-    report
+    Ok(report)
 }
 
 /// True when a feed move before has passed within a micrometre of `p` at `p`'s depth or deeper.
@@ -290,13 +290,13 @@ fn pocket_check(
     gouge: (f64, Option<Place>),
     r: f64,
     tol: &Tolerance,
-) -> PocketCheck {
+) -> Result<PocketCheck, OffsetError> {
     // What the tool can reach: the pocket eroded by the radius, then grown back.
-    let centres = region.offset(r, tol);
+    let centres = region.offset(r, tol)?;
     let reach: Vec<Contour> = if centres.is_empty() {
         Vec::new()
     } else {
-        Region::from_loops(&centres).offset(-r, tol)
+        Region::from_loops(&centres).offset(-r, tol)?
     };
     let reach_rings: Vec<Vec<[f64; 2]>> = reach.iter().map(|c| ring(c, CHORD)).collect();
     let reachable_area: f64 = reach.iter().map(Contour::signed_area).sum();
@@ -327,7 +327,7 @@ fn pocket_check(
             );
         }
     }
-    PocketCheck {
+    Ok(PocketCheck {
         area: pocket.area(),
         reachable_area,
         gouge: gouge.0.max(0.0),
@@ -341,5 +341,5 @@ fn pocket_check(
         thickest: thickest.0,
         thickest_at: thickest.1,
         leftover,
-    }
+    })
 }
