@@ -198,11 +198,19 @@ impl SegmentIndex {
     /// True when some segment comes nearer to `p` than `r`: stops at the first one found, so it
     /// is cheaper than [`SegmentIndex::distance`] when the answer is yes.
     pub fn any_within(&self, p: Point, r: f64) -> bool {
+        self.any_within_counted(p, r, &mut 0)
+    }
+
+    /// [`SegmentIndex::any_within`], adding to `work` one for the search and one for every
+    /// segment it measured (those whose boxes come within `r`): near the middle of a round
+    /// profile, with `r` close to its radius, that is most of them.
+    pub fn any_within_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
+        *work += 1;
         r > 0.0
-            && self
-                .tree
-                .locate_within_distance([p.x, p.y], r * r)
-                .any(|f| point_distance(&f.0, p) < r)
+            && self.tree.locate_within_distance([p.x, p.y], r * r).any(|f| {
+                *work += 1;
+                point_distance(&f.0, p) < r
+            })
     }
 
     /// True when some segment comes nearer to the segment `s` than `r` (`eps`: the geometric

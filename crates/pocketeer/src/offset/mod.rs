@@ -1,6 +1,7 @@
 //! Offsetting pockets and contours: the paper's raw offset → split → prune → stitch
 //! (`../shared/paper/summary.md` §3–§6), one stage per file.
 
+mod clip;
 mod levels;
 mod prune;
 mod raw;
@@ -28,27 +29,22 @@ pub const MAX_CROSSINGS: usize = 2_000_000;
 /// Why an offset cannot be computed.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum OffsetError {
-    /// The raw offset's pieces overlap by the thousand: the work grows with their square.
+    /// The work would grow with the square of the drawing: raw offset pieces overlapping by
+    /// the thousand (sharp detail much finer than the distance), or many elements at nearly
+    /// the same distance from the points tested (the distance within a hair of the largest
+    /// circle the pocket holds).
     #[error(
-        "offsetting by {distance} mm is too much work: the {pieces} pieces of the raw offset \
-         took {tests} box comparisons and crossed {crossings} times before giving up near \
-         ({x:.4}, {y:.4}) mm (limits {}, {}): the drawing has sharp detail much finer than the \
-         distance there, each piece of the offset crossing thousands of others; simplify the \
-         drawing or offset by less",
-        MAX_BOX_TESTS,
-        MAX_CROSSINGS,
+        "offsetting by {distance} mm is too much work: {what}, near ({x:.4}, {y:.4}) mm; the \
+         drawing has detail much finer than the distance there, or the distance is within a \
+         hair of the widest place of the pocket; simplify the drawing or change the distance",
         x = near.x,
         y = near.y
     )]
     TooComplex {
         /// The offset distance, mm.
         distance: f64,
-        /// Pieces of the raw offset.
-        pieces: usize,
-        /// Box comparisons made before giving up.
-        tests: u64,
-        /// Crossings found before giving up.
-        crossings: usize,
+        /// What ran over its limit.
+        what: String,
         /// A point of the raw offset where the work stopped, mm.
         near: Point,
     },
@@ -330,15 +326,27 @@ fn erode(
         raw = keep_sources(raw, &rings, elements, smaller);
     }
     let mut nodes = Nodes::new(next_node);
-    let pieces = split(&raw, &mut nodes, tol, (MAX_BOX_TESTS, MAX_CROSSINGS)).map_err(|o| {
-        OffsetError::TooComplex {
-            distance: d,
-            pieces: raw.len(),
-            tests: o.tests,
-            crossings: o.crossings,
-            near: raw[o.at].segment.start(),
+    let budget = (MAX_BOX_TESTS, MAX_CROSSINGS);
+    let pieces = match split(&raw, &mut nodes, tol, budget) {
+        Ok(pieces) => pieces,
+        Err(first) => {
+            // Too many crossings: most lie in parts of pieces that are invalid anyway.
+            let too_complex = |pieces: &[Piece], o: split::Overrun| OffsetError::TooComplex {
+                distance: d,
+                what: format!(
+                    "the {} pieces of its raw offset took {} box comparisons and crossed {} times \
+                     (limits {MAX_BOX_TESTS} and {MAX_CROSSINGS})",
+                    pieces.len(),
+                    o.tests,
+                    o.crossings
+                ),
+                near: pieces[o.at].segment.start(),
+            };
+            let clipped = clip::clip_invalid(&raw, profile, d, prune::slack(d, tol), &mut nodes)
+                .ok_or_else(|| too_complex(&raw, first))?;
+            split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
-    })?;
+    };
     let pieces: Vec<Piece> = pieces
         .into_iter()
         .map(|p| Piece {
@@ -349,7 +357,14 @@ fn erode(
         .collect();
     let is_join =
         |p: &Piece| p.source as usize >= elements && matches!(p.segment, crate::geom::Segment::Line(_));
-    let kept = prune(pieces, profile, inside, &is_join, d, tol);
+    let kept = prune(pieces, profile, inside, &is_join, d, tol).map_err(|near| OffsetError::TooComplex {
+        distance: d,
+        what: format!(
+            "judging its pieces would measure more than {} distances to the walls",
+            prune::MAX_MEASURES
+        ),
+        near,
+    })?;
     let kept = remove_dangling(cancel_opposites(kept, tol));
     let mut used = vec![false; 2 * elements];
     for p in &kept {

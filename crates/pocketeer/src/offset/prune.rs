@@ -9,6 +9,18 @@ use crate::union_find::UnionFind;
 /// far below any machining tolerance, far above rounding.
 const JOIN_SLACK: f64 = 1e-5;
 
+/// The most element distances [`prune`] may measure: a few seconds. Each run is judged by
+/// one point; only where the offset is cut into millions of runs, each point having most of
+/// the profile at nearly the same distance (the distance a hair below the largest circle a
+/// pocket of many elements holds), would it take longer.
+pub const MAX_MEASURES: u64 = 40_000_000;
+
+/// How far inside `d` a piece may come and still count as at distance `d`: exact offset
+/// pieces are at distance d up to rounding, far below ten epsilons.
+pub fn slack(d: f64, tol: &Tolerance) -> f64 {
+    (10.0 * tol.eps).min(1e-3 * d)
+}
+
 /// The original profile, indexed for distance queries.
 pub struct Profile {
     index: SegmentIndex,
@@ -26,6 +38,11 @@ impl Profile {
     /// True when the profile comes nearer to `p` than `r`.
     pub fn nearer_than(&self, p: Point, r: f64) -> bool {
         self.index.any_within(p, r)
+    }
+
+    /// [`Profile::nearer_than`], adding to `work` the number of elements measured.
+    pub fn nearer_than_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
+        self.index.any_within_counted(p, r, work)
     }
 
     /// Distance from `p` to the profile.
@@ -51,6 +68,9 @@ impl Profile {
 /// collapse) are no offset curve: their points are nearer than d to the joint, so the
 /// argument above does not hold along them. A join coming more than `JOIN_SLACK` inside d is
 /// a run of its own, and invalid; a shorter one stays in its run.
+///
+/// `Err` with the point being judged when that would measure more than [`MAX_MEASURES`]
+/// element distances.
 pub fn prune(
     pieces: Vec<Piece>,
     profile: &Profile,
@@ -58,9 +78,8 @@ pub fn prune(
     is_join: &dyn Fn(&Piece) -> bool,
     d: f64,
     tol: &Tolerance,
-) -> Vec<Piece> {
-    // Exact offset pieces are at distance d up to rounding, far below ten epsilons.
-    let slack = (10.0 * tol.eps).min(1e-3 * d);
+) -> Result<Vec<Piece>, Point> {
+    let slack = slack(d, tol);
     let pieces: Vec<Piece> = pieces
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
@@ -81,21 +100,24 @@ pub fn prune(
             *best = i;
         }
     }
-    let valid: Vec<bool> = longest
-        .iter()
-        .map(|&i| {
-            i != usize::MAX && {
-                let m = pieces[i].segment.point_at(0.5);
-                !profile.nearer_than(m, d - slack) && inside(m)
-            }
-        })
-        .collect();
-    pieces
+    let mut work = 0;
+    let mut valid = vec![false; longest.len()];
+    for (v, &i) in valid.iter_mut().zip(&longest) {
+        if i == usize::MAX {
+            continue;
+        }
+        let m = pieces[i].segment.point_at(0.5);
+        *v = !profile.nearer_than_counted(m, d - slack, &mut work) && inside(m);
+        if work > MAX_MEASURES {
+            return Err(m);
+        }
+    }
+    Ok(pieces
         .into_iter()
         .enumerate()
         .filter(|(i, _)| valid[run[*i]])
         .map(|(_, p)| p)
-        .collect()
+        .collect())
 }
 
 /// One more than the largest node id.
