@@ -284,8 +284,22 @@ fn three_tiny_semicircles_at_a_hundredth() {
 #[test]
 #[ignore = "known: a needle 130 mm long whose two sides are arcs of radius ~4200 bulging the same way, 0.01-0.02 mm apart, offset by 52.7: a node arc of a nearby corner passes 15 mm from the needle's tip without a cut and is kept with its run (37.5 mm inside d)"]
 fn a_hair_thin_needle_of_flat_arcs() {
-    let v = [(-12851, 128, 0), (1535, -31996, -51), (-17715, -32564, -51), (-17235, -11603, -83), (-12849, -128, -1), (-12851, -13056, 1)];
+    let v = [
+        (-12851, 128, 0),
+        (1535, -31996, -51),
+        (-17715, -32564, -51),
+        (-17235, -11603, -83),
+        (-12849, -128, -1),
+        (-12851, -13056, 1),
+    ];
     case(&v, &[], 52731);
-    let v = [(-12851, 128, 0), (-12546, 4, -51), (-25907, -32564, -51), (-21331, -11587, -83), (-12849, -128, -1), (-12851, -13056, 1)];
+    let v = [
+        (-12851, 128, 0),
+        (-12546, 4, -51),
+        (-25907, -32564, -51),
+        (-21331, -11587, -83),
+        (-12849, -128, -1),
+        (-12851, -13056, 1),
+    ];
     case(&v, &[], 52731);
 }
