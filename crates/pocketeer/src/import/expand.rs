@@ -34,6 +34,8 @@ pub struct Expander<'a> {
     pub warnings: Vec<String>,
     stack: Vec<String>,
     groups: usize,
+    /// Entities each block expands to (memo of [`Expander::expanded_size`]).
+    sizes: std::collections::HashMap<String, u64>,
 }
 
 impl<'a> Expander<'a> {
@@ -45,6 +47,7 @@ impl<'a> Expander<'a> {
             warnings: Vec::new(),
             stack: Vec::new(),
             groups: 0,
+            sizes: std::collections::HashMap::new(),
         }
     }
 
@@ -135,11 +138,23 @@ impl<'a> Expander<'a> {
             });
         }
         let (sx, sy) = (real(41, 1.0), real(42, 1.0));
+        if !(sx.is_finite() && sy.is_finite() && sx != 0.0 && sy != 0.0) {
+            self.warnings.push(format!(
+                "{}: block '{name}' inserted with scale {} × {}: nothing to draw; ignored",
+                e.reference(layer),
+                super::error::fmt_number(sx),
+                super::error::fmt_number(sy)
+            ));
+            return Ok(());
+        }
         let rotation = real(50, 0.0).to_radians();
         let ins = Vector::new(real(10, 0.0), real(20, 0.0));
         let (cols, rows) = (int(70, 1).max(1), int(71, 1).max(1));
         let (dx, dy) = (real(44, 0.0), real(45, 0.0));
-        if cols.saturating_mul(rows) > MAX_CURVES as i64 {
+        // Counted before anything is built: nested blocks can multiply out exponentially.
+        let cells = u64::try_from(cols.saturating_mul(rows)).unwrap_or(u64::MAX);
+        let size = self.expanded_size(&name, 0).saturating_mul(cells);
+        if cells > MAX_CURVES as u64 || size.saturating_add(self.placed.len() as u64) > MAX_CURVES as u64 {
             return Err(ImportError::TooLarge {
                 limit: MAX_CURVES,
                 pos: e.pos,
@@ -162,5 +177,36 @@ impl<'a> Expander<'a> {
         }
         self.stack.pop();
         Ok(())
+    }
+
+    /// How many entities (other than INSERTs) one insertion of block `name` draws, counting
+    /// nested insertions and their arrays; saturating. A block that inserts itself counts its
+    /// own entities once (the walk refuses it).
+    fn expanded_size(&mut self, name: &str, depth: usize) -> u64 {
+        let key = name.to_uppercase();
+        if let Some(&n) = self.sizes.get(&key) {
+            return n;
+        }
+        let Some(block) = self.doc.blocks.get(&key) else {
+            return 0;
+        };
+        // Mark as in progress: a cycle counts as nothing more.
+        self.sizes.insert(key.clone(), 0);
+        let mut n: u64 = 0;
+        for e in &block.entities {
+            if e.kind != "INSERT" {
+                n = n.saturating_add(1);
+                continue;
+            }
+            if depth >= MAX_NESTING {
+                continue;
+            }
+            let int = |code: i32| e.group(code).and_then(Group::int).unwrap_or(1).max(1);
+            let cells = u64::try_from(int(70).saturating_mul(int(71))).unwrap_or(u64::MAX);
+            let child = e.text(2).unwrap_or_default().trim().to_owned();
+            n = n.saturating_add(self.expanded_size(&child, depth + 1).saturating_mul(cells));
+        }
+        self.sizes.insert(key, n);
+        n
     }
 }
