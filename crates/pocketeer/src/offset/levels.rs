@@ -1,7 +1,7 @@
 //! Many offsets of one region at once, on every core: each level is an offset of the original
 //! region, the deeper ones offsetting only the sources of one already done.
 
-use super::{OffsetError, Region, Sources};
+use super::{OffsetError, Region, Sources, MAX_LEVEL_SEGMENTS};
 use crate::geom::{Contour, Tolerance};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -33,6 +33,14 @@ pub fn offsets_until_empty(
     let limit = AtomicUsize::new(distances.len());
     let done: Mutex<BTreeMap<usize, Level>> = Mutex::new(BTreeMap::new());
     let failed: Mutex<Option<OffsetError>> = Mutex::new(None);
+    // Segments of all levels so far: the tool path grows as levels × elements.
+    let segments = AtomicUsize::new(0);
+    let fail = |e: OffsetError| {
+        limit.store(0, Ordering::Relaxed);
+        if let Ok(mut f) = failed.lock() {
+            f.get_or_insert(e);
+        }
+    };
     let work = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         if k >= limit.load(Ordering::Relaxed) {
@@ -45,13 +53,19 @@ pub fn offsets_until_empty(
         let (loops, sources) = match region.offset_after(distances[k], tol, smaller.as_deref()) {
             Ok(level) => level,
             Err(e) => {
-                limit.store(0, Ordering::Relaxed);
-                if let Ok(mut f) = failed.lock() {
-                    f.get_or_insert(e);
-                }
+                fail(e);
                 break;
             }
         };
+        let here: usize = loops.iter().map(|l| l.segments.len()).sum();
+        let total = segments.fetch_add(here, Ordering::Relaxed) + here;
+        if total > MAX_LEVEL_SEGMENTS {
+            fail(OffsetError::TooLarge {
+                distance: distances[k],
+                segments: total,
+            });
+            break;
+        }
         if loops.is_empty() {
             limit.fetch_min(k, Ordering::Relaxed);
             break;

@@ -26,6 +26,11 @@ pub const MAX_BOX_TESTS: u64 = 60_000_000;
 /// See [`MAX_BOX_TESTS`].
 pub const MAX_CROSSINGS: usize = 2_000_000;
 
+/// The most segments the levels of one pocket may hold together (about a gigabyte, and a
+/// program of tens of millions of moves): a drawing of 100 000 elements cleared with a
+/// stepover of a tenth of a millimetre would need billions.
+pub const MAX_LEVEL_SEGMENTS: usize = 20_000_000;
+
 /// Why an offset cannot be computed.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum OffsetError {
@@ -47,6 +52,19 @@ pub enum OffsetError {
         what: String,
         /// A point of the raw offset where the work stopped, mm.
         near: Point,
+    },
+    /// The levels of a pocket would hold more segments than [`MAX_LEVEL_SEGMENTS`].
+    #[error(
+        "the levels up to {distance:.4} mm from the walls already hold {segments} segments, more \
+         than the {} allowed: the tool path would have tens of millions of moves; raise the \
+         stepover or simplify the drawing",
+        MAX_LEVEL_SEGMENTS
+    )]
+    TooLarge {
+        /// The level being added, mm from the walls.
+        distance: f64,
+        /// Segments held with it.
+        segments: usize,
     },
 }
 
