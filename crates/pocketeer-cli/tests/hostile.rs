@@ -38,6 +38,18 @@ fn square() -> String {
         .collect()
 }
 
+/// A square `size` across with its corner at (`at`, `at`).
+fn scaled_square(size: f64, at: f64) -> String {
+    let p = |x: f64, y: f64| ((at + x * size).to_string(), (at + y * size).to_string());
+    let c = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+    (0..4)
+        .map(|k| {
+            let (a, b) = (&c[k], &c[(k + 1) % 4]);
+            line((&a.0, &a.1), (&b.0, &b.1))
+        })
+        .collect()
+}
+
 fn block(name: &str, body: &str) -> String {
     format!("0\nBLOCK\n8\n0\n2\n{name}\n70\n0\n10\n0\n20\n0\n{body}0\nENDBLK\n")
 }
@@ -125,6 +137,12 @@ fn adversarial() -> Vec<(String, Vec<u8>)> {
         ),
         ("coincident_lines", dxf(&coincident, "")),
         ("fine_saw", dxf(&saw, "")),
+        // Found by the long run: crossing contours in a drawing 1e6 mm across made a clamp's
+        // lower bound exceed its upper one.
+        (
+            "huge_crossing_squares",
+            dxf(&(scaled_square(1e6, 0.0) + &scaled_square(1e6, 5e5)), ""),
+        ),
         ("empty", String::new()),
         ("only_eof", "0\nEOF\n".to_string()),
         ("binary_header_only", "AutoCAD Binary DXF\r\n\x1a\0".to_string()),

@@ -352,7 +352,8 @@ fn boundary_pieces(
     for piece in pieces {
         let mid = piece.point_at(0.5);
         let normal = piece.tangent_at(0.5).perp();
-        let delta = (piece.length() * 1e-3).clamp(100.0 * tol.eps, 1e-4);
+        // At least 100 eps, even where that exceeds the usual 1e-4 (drawings 1e5 mm across).
+        let delta = (piece.length() * 1e-3).min(1e-4).max(100.0 * tol.eps);
         let left = removed(mid + normal * delta);
         let right = removed(mid - normal * delta);
         if left && !right {
