@@ -145,14 +145,9 @@ fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
                 what: format!("group code {code} has no value: the file ends here"),
             });
         };
-        let mut value = decode(value_line);
-        if (0..=9).contains(&code) || code == 100 || code == 102 {
-            // Keywords and names: surrounding blanks are never meaningful.
-            value = value.trim().to_owned();
-        }
         let g = Group {
             code,
-            value: Value::Text(value),
+            value: ascii_value(code, value_line),
             pos: Pos::Line(i + 1),
         };
         let eof = g.is(0, "EOF");
@@ -166,6 +161,33 @@ fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
         return Err(ImportError::NotDxf("the file is empty".into()));
     }
     Ok(out)
+}
+
+/// The value of an ASCII group: numbers of the codes that hold them are stored as numbers
+/// (a drawing of a million lines holds millions of them, and a string each would cost several
+/// times the file's size), everything else as text.
+fn ascii_value(code: i32, line: &[u8]) -> Value {
+    let number = std::str::from_utf8(line).ok().map(str::trim);
+    match (kind_of(code), number) {
+        (Kind::Real, Some(t)) => {
+            if let Ok(x) = t.parse::<f64>() {
+                return Value::Real(x);
+            }
+        }
+        (Kind::I16 | Kind::I32 | Kind::I64 | Kind::I8, Some(t)) => {
+            if let Ok(i) = t.parse::<i64>() {
+                return Value::Int(i);
+            }
+        }
+        _ => {}
+    }
+    let value = decode(line);
+    if (0..=9).contains(&code) || code == 100 || code == 102 {
+        // Keywords and names: surrounding blanks are never meaningful.
+        Value::Text(value.trim().to_owned())
+    } else {
+        Value::Text(value)
+    }
 }
 
 /// Storage class of a group code's value in a binary DXF.
