@@ -52,17 +52,22 @@ fn run(data: &[u8]) {
     {
         let Ok(input) = Input::arbitrary(&mut Unstructured::new(data)) else { return };
         let Some(boundary) = contour(&input.vertices[..input.vertices.len().min(64)]) else { return };
-        // Only simple outlines are pockets: the importer refuses self-crossing ones.
-        let segs = boundary.segments.clone();
-        for i in 0..segs.len() {
-            for j in i + 1..segs.len() {
-                let adjacent = j == i + 1 || (i == 0 && j == segs.len() - 1);
-                let hits = pocketeer::geom::intersect(&segs[i], &segs[j], 1e-9);
-                if hits.iter().count() > usize::from(adjacent) {
-                    return;
-                }
-            }
+        // Only what the importer accepts is a pocket: it refuses outlines that cross themselves
+        // (a pairwise test of the elements here missed shallow crossings of flat arcs) and cuts
+        // away sliver loops; the offset gets its outline.
+        let tol = Tolerance::for_extent(&boundary.bbox(), 0.001);
+        let chained = pocketeer::import::ChainedContour {
+            contour: boundary,
+            layer: 0,
+            elements: Vec::new(),
+        };
+        let Ok(regions) = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol) else { return };
+        let [pocket] = &regions.pockets[..] else { return };
+        if !pocket.islands.is_empty() {
+            return;
         }
+        let boundary = pocket.boundary.clone();
+        let segs = boundary.segments.clone();
         let boundary = if boundary.is_ccw() { boundary } else { boundary.reversed() };
         let islands: Vec<Contour> = input
             .islands
