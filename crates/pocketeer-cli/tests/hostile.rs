@@ -1,8 +1,8 @@
 //! Hostile drawings through `inspect`, `offset` and `pocket`: adversarial files (zero-length
 //! and 1e-12 arcs, 1e300 and NaN coordinates, a block inserting itself, exponential block
-//! nesting, 20 000 coincident lines, a saw of teeth finer than the tool) and mutated and
-//! truncated versions of the shipped drawings (`ten_thousand_variants`, ignored, runs ten
-//! thousand of them and any folder of drawings). Every run must end within its time limit with
+//! nesting, 20 000 coincident lines, a saw of teeth finer than the tool, random bytes) and
+//! mutated and truncated versions of the shipped drawings (`ten_thousand_variants`, ignored,
+//! runs ten thousand of them and any folder of drawings). Every run must end within its time limit with
 //! a result or a refusal naming the file, never a panic, and a failed run must leave the
 //! existing output file as it was.
 
@@ -147,10 +147,21 @@ fn adversarial() -> Vec<(String, Vec<u8>)> {
         ("only_eof", "0\nEOF\n".to_string()),
         ("binary_header_only", "AutoCAD Binary DXF\r\n\x1a\0".to_string()),
     ];
-    cases
+    let mut out: Vec<(String, Vec<u8>)> = cases
         .into_iter()
         .map(|(n, t)| (n.to_string(), t.into_bytes()))
-        .collect()
+        .collect();
+    // Random bytes, and random bytes after a valid start.
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    for k in 0..4 {
+        let len = 1 + rng.below(4096);
+        let mut bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
+        if k % 2 == 1 {
+            bytes.splice(0..0, b"0\nSECTION\n2\nENTITIES\n".iter().copied());
+        }
+        out.push((format!("random_bytes_{k}"), bytes));
+    }
+    out
 }
 
 /// A small deterministic generator (xorshift), so that failures replay.
