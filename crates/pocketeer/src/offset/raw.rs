@@ -128,7 +128,7 @@ pub fn raw_offset(
 /// True when the contour turns right from `a` into `b`, or turns straight back in a cusp that
 /// opens to the right at the scale of the offset, or cannot be told.
 ///
-/// Near a reversal the tangents alone do not tell a needle of material (a left turn: the moved
+/// Near a reversal (within [`NEAR_REVERSAL`]) the tangents alone do not tell a needle of material (a left turn: the moved
 /// elements overlap) from a slit into it (a right turn: they part around the joint): rounding
 /// decides the sign of their cross product `c`, or the elements curve apart a hair beyond the
 /// joint. There the side is taken from where `b` lies against `a` at an arc length `s` from
@@ -151,8 +151,9 @@ fn right_turn(a: &Segment, b: &Segment, d: f64) -> bool {
 }
 
 /// Sine of the angle from a full reversal below which a joint's side is taken from the
-/// elements' curvature as well as their tangents (about half a degree).
-const NEAR_REVERSAL: f64 = 0.01;
+/// elements' curvature as well as their tangents (about six degrees: a line meeting a
+/// semicircle 0.02 mm across at 179.1° is a slit at the scale of a 0.6 mm offset).
+const NEAR_REVERSAL: f64 = 0.1;
 
 /// Signed curvature of a segment: 1/radius for a counter-clockwise arc, negative for a
 /// clockwise one, 0 for a line.
