@@ -404,3 +404,34 @@ fn tiny_semicircles_meeting_lines_almost_straight_back() {
         56077,
     );
 }
+
+/// Found by the seventh run, after the band widened: a joint turning right by 175.5° by its
+/// tangents, into an arc 0.02 mm long curling the other way, taken for a left turn by the
+/// curvature; the moved sides did not cross and a chord joined them, and a node arc nearby
+/// kept a part 0.016 mm inside d. Near a reversal, a joint whose moved sides do not cross now
+/// gets the part of its node arc at distance d from both sides (the whole arc when the
+/// tangents turn right), with chords over the sides judged alone.
+#[test]
+fn near_reversals_whose_moved_sides_do_not_cross_keep_their_tip_arc() {
+    let v = [
+        (-12851, 1261, -128),
+        (19916, 1261, -37),
+        (-9419, -9308, -37),
+        (-23388, -26215, -103),
+        (-26215, -26215, -128),
+        (-12852, 1263, -128),
+        (-12851, 1263, 5),
+    ];
+    case(&v, &[(-26215, -26215, 153), (-12928, -12852, 239)], 65408);
+    case(&v, &[], 64260);
+    let v = [
+        (-12851, 1261, -128),
+        (19916, 1261, -37),
+        (-9419, -9308, -37),
+        (-23388, -26266, -103),
+        (-26215, -26215, -128),
+        (-12852, 1263, -128),
+        (-12851, 1263, 5),
+    ];
+    case(&v, &[], 62211);
+}

@@ -102,7 +102,37 @@ pub fn raw_offset(
             end,
             source: (base + k) as u32,
         });
-        let join = if (k + 1) % segs.len() == j && right_turn(&segs[k], &segs[j], d) {
+        let adjacent = (k + 1) % segs.len() == j;
+        let turns_right = adjacent && right_turn(&segs[k], &segs[j], d);
+        // A needle tip whose moved sides do not cross: see `tip_arc`.
+        if adjacent && !turns_right && near_reversal(&segs[k], &segs[j]) {
+            let (arc, whole) = tip_arc(segs[k].end(), d, a.end(), b_start);
+            let arc = Segment::Arc(arc);
+            let source = (joints + base + k) as u32;
+            let parts: Vec<(Segment, usize, usize)> = if whole {
+                vec![(arc, end, next_start)]
+            } else {
+                // Chord, arc, chord: the chords are judged alone, the arc with its run.
+                let (n1, n2) = (next_node, next_node + 1);
+                next_node += 2;
+                let chord = |p: crate::geom::Point, q: crate::geom::Point| Segment::Line(Line::new(p, q));
+                vec![
+                    (chord(a.end(), arc.start()), end, n1),
+                    (arc, n1, n2),
+                    (chord(arc.end(), b_start), n2, next_start),
+                ]
+            };
+            for (segment, start, end) in parts {
+                pieces.push(Piece {
+                    segment,
+                    start,
+                    end,
+                    source,
+                });
+            }
+            continue;
+        }
+        let join = if turns_right {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
             let a0 = (a.end() - corner).angle();
@@ -123,6 +153,45 @@ pub fn raw_offset(
         });
     }
     (pieces, next_node)
+}
+
+/// True when the contour turns back within [`NEAR_REVERSAL`] of a full reversal at the joint
+/// from `a` into `b`.
+fn near_reversal(a: &Segment, b: &Segment) -> bool {
+    let (t_in, t_out) = (a.tangent_at(1.0), b.tangent_at(0.0));
+    t_in.dot(t_out) < 0.0 && t_in.cross(t_out).abs() <= NEAR_REVERSAL
+}
+
+/// The part of the circle of radius `d` round a needle tip `corner` that is at distance d
+/// from both sides, when the moved sides (ending at `from`, starting at `to`) do not cross;
+/// and whether it is all of the sweep.
+///
+/// Going clockwise from `from` round the tip to `to` sweeps π + α (α: how far the turn falls
+/// short of a reversal). The first and last α lie over the sides themselves, nearer than d to
+/// them on their outer side, which no raw piece bounds; the π between is at distance d from
+/// both, an exact offset of the tip, and is kept as an arc. Were the whole sweep one arc, a run
+/// judged by one point could keep its ends; were it a chord, it would pass through the tip and
+/// lose the loop where the tip is a slit into material (for a needle of material the arc lies
+/// outside the region and goes). When the sweep is not past π the tangents turn right after
+/// all (the curvature said otherwise): the moved sides part, and the whole sweep is the arc.
+fn tip_arc(
+    corner: crate::geom::Point,
+    d: f64,
+    from: crate::geom::Point,
+    to: crate::geom::Point,
+) -> (Arc, bool) {
+    let a0 = (from - corner).angle();
+    let a1 = (to - corner).angle();
+    let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
+    if sweep > 0.0 {
+        sweep -= 2.0 * PI;
+    }
+    let alpha = -sweep - PI;
+    if alpha > 0.0 {
+        (Arc::new(corner, d, a0 - alpha, -PI), false)
+    } else {
+        (Arc::new(corner, d, a0, sweep), true)
+    }
 }
 
 /// True when the contour turns right from `a` into `b`, or turns straight back in a cusp that
