@@ -338,22 +338,32 @@ fn adversarial_drawings_get_a_result_or_a_located_refusal() {
     }
 }
 
+/// The example, then every DXF under the fixtures and under `extra` (sorted, in folders at any
+/// depth).
+fn drawings(extra: Option<PathBuf>) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut folders = vec![repo().join("crates/pocketeer/tests/fixtures/corpus")];
+    folders.extend(extra);
+    while let Some(folder) = folders.pop() {
+        for e in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                folders.push(p);
+            } else if p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf")) {
+                found.push(p);
+            }
+        }
+    }
+    found.sort();
+    std::iter::once(repo().join("examples/bracket.dxf"))
+        .chain(found)
+        .collect()
+}
+
 #[test]
 fn mutated_and_truncated_drawings_get_a_result_or_a_located_refusal() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let mut sources = vec![repo().join("examples/bracket.dxf")];
-    for sub in ["cc0", "mit"] {
-        let folder = repo().join("crates/pocketeer/tests/fixtures/corpus").join(sub);
-        let mut found: Vec<PathBuf> = std::fs::read_dir(folder)
-            .into_iter()
-            .flatten()
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")))
-            .collect();
-        found.sort();
-        sources.extend(found);
-    }
+    let sources = drawings(None);
     for (k, src) in sources.iter().enumerate() {
         let bytes = std::fs::read(src).expect("fixture");
         for (i, m) in mutants(&bytes, 12, 0x9E37_79B9_7F4A_7C15 ^ k as u64)
@@ -376,22 +386,7 @@ fn ten_thousand_variants() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(10_000);
-    let mut sources = vec![repo().join("examples/bracket.dxf")];
-    let mut folders = vec![repo().join("crates/pocketeer/tests/fixtures/corpus")];
-    if let Some(d) = std::env::var_os("POCKETEER_HOSTILE_DIR") {
-        folders.push(PathBuf::from(d));
-    }
-    while let Some(folder) = folders.pop() {
-        for e in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                folders.push(p);
-            } else if p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf")) {
-                sources.push(p);
-            }
-        }
-    }
-    sources.sort();
+    let sources = drawings(std::env::var_os("POCKETEER_HOSTILE_DIR").map(PathBuf::from));
     let dir = tempfile::tempdir().expect("temp dir");
     for (name, bytes) in adversarial() {
         check_one(dir.path(), &name, &bytes);

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::shapes::{circle_cw, rect, star};
+use common::shapes::{circle_cw, mirror_segment, mirrored, polygon, rect, star};
 use pocketeer::clear::{plan_pocket, ClearParams};
 use pocketeer::export::dxf::{write_dxf, LayeredContour};
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Vector};
@@ -28,10 +28,6 @@ fn case(name: &str, contours: Vec<Contour>, distances: &[f64]) -> Case {
         contours,
         distances: distances.to_vec(),
     }
-}
-
-fn polygon(pts: &[(f64, f64)]) -> Contour {
-    Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
 }
 
 /// A circle of `n` line segments.
@@ -207,21 +203,6 @@ enum Change {
 
 const FAR: Vector = Vector { x: 1e5, y: -1e5 };
 
-fn mirror_segment(s: &Segment) -> Segment {
-    match s {
-        Segment::Line(l) => Segment::Line(Line::new(
-            Point::new(-l.start.x, l.start.y),
-            Point::new(-l.end.x, l.end.y),
-        )),
-        Segment::Arc(a) => Segment::Arc(Arc::new(
-            Point::new(-a.center.x, a.center.y),
-            a.radius,
-            std::f64::consts::PI - a.start_angle,
-            -a.sweep,
-        )),
-    }
-}
-
 impl Change {
     fn apply(self, c: &Contour) -> Contour {
         match self {
@@ -241,7 +222,7 @@ impl Change {
     fn back_loop(self, l: &Contour) -> Contour {
         match self {
             Change::Reversed | Change::StartRotated => l.clone(),
-            Change::Mirrored => Contour::new(l.segments.iter().map(mirror_segment).collect()).reversed(),
+            Change::Mirrored => mirrored(l),
             Change::Moved => Contour::new(l.segments.iter().map(|s| s.translated(-FAR)).collect()),
         }
     }

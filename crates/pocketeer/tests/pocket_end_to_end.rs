@@ -264,26 +264,6 @@ fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
         s.rotate_left(k);
         Contour::new(s)
     };
-    let mirror = |c: &Contour| {
-        // Mirror in x: every segment mirrored, then the contour reversed to keep its sense.
-        let m: Vec<Segment> = c
-            .segments
-            .iter()
-            .map(|s| match s {
-                Segment::Line(l) => Segment::Line(pocketeer::geom::Line::new(
-                    pocketeer::geom::Point::new(-l.start.x, l.start.y),
-                    pocketeer::geom::Point::new(-l.end.x, l.end.y),
-                )),
-                Segment::Arc(a) => Segment::Arc(pocketeer::geom::Arc::new(
-                    pocketeer::geom::Point::new(-a.center.x, a.center.y),
-                    a.radius,
-                    std::f64::consts::PI - a.start_angle,
-                    -a.sweep,
-                )),
-            })
-            .collect();
-        Contour::new(m).reversed()
-    };
     let far = |c: &Contour| {
         Contour::new(
             c.segments
@@ -294,7 +274,7 @@ fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
     };
     let variants = [
         ("rotated start", map(&base, &rotate_start)),
-        ("mirrored", map(&base, &mirror)),
+        ("mirrored", map(&base, &common::shapes::mirrored)),
         ("translated by 1e5", map(&base, &far)),
     ];
     let tol = Tolerance::default();

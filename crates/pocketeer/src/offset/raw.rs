@@ -135,12 +135,7 @@ pub fn raw_offset(
         let join = if turns_right {
             // The moved elements part: an arc of radius d around the joint, turning the same way.
             let corner = segs[k].end();
-            let a0 = (a.end() - corner).angle();
-            let a1 = (b_start - corner).angle();
-            let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
-            if sweep > 0.0 {
-                sweep -= 2.0 * PI;
-            }
+            let (a0, sweep) = clockwise_sweep(corner, a.end(), b_start);
             Segment::Arc(Arc::new(corner, d, a0, sweep))
         } else {
             Segment::Line(Line::new(a.end(), b_start))
@@ -180,18 +175,29 @@ fn tip_arc(
     from: crate::geom::Point,
     to: crate::geom::Point,
 ) -> (Arc, bool) {
-    let a0 = (from - corner).angle();
-    let a1 = (to - corner).angle();
-    let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
-    if sweep > 0.0 {
-        sweep -= 2.0 * PI;
-    }
+    let (a0, sweep) = clockwise_sweep(corner, from, to);
     let alpha = -sweep - PI;
     if alpha > 0.0 {
         (Arc::new(corner, d, a0 - alpha, -PI), false)
     } else {
         (Arc::new(corner, d, a0, sweep), true)
     }
+}
+
+/// The angle of `from` seen from `corner`, and the clockwise sweep (in (-2π, 0]) round
+/// `corner` from `from` to `to`: how a node arc turns.
+fn clockwise_sweep(
+    corner: crate::geom::Point,
+    from: crate::geom::Point,
+    to: crate::geom::Point,
+) -> (f64, f64) {
+    let a0 = (from - corner).angle();
+    let a1 = (to - corner).angle();
+    let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
+    if sweep > 0.0 {
+        sweep -= 2.0 * PI;
+    }
+    (a0, sweep)
 }
 
 /// True when the contour turns right from `a` into `b`, or turns straight back in a cusp that

@@ -39,15 +39,20 @@ pub fn split(
     let near_end = 10.0 * tol.eps;
     // A piece shorter than that is a point where the pieces before and after it meet: its
     // ends become one node.
-    for p in pieces.iter().filter(|p| p.segment.length() <= near_end) {
-        nodes.union(p.start, p.end);
-    }
-    let pieces: Vec<Piece> = pieces
-        .iter()
-        .filter(|p| p.segment.length() > near_end)
-        .copied()
-        .collect();
-    let pieces = &pieces[..];
+    let long: Vec<Piece>;
+    let pieces = if pieces.iter().any(|p| p.segment.length() <= near_end) {
+        for p in pieces.iter().filter(|p| p.segment.length() <= near_end) {
+            nodes.union(p.start, p.end);
+        }
+        long = pieces
+            .iter()
+            .filter(|p| p.segment.length() > near_end)
+            .copied()
+            .collect();
+        &long[..]
+    } else {
+        pieces
+    };
     let boxes: Vec<Aabb> = pieces
         .iter()
         .map(|p| p.segment.bbox().inflated(tol.eps))

@@ -1,8 +1,34 @@
 //! Pockets for tests: rectangles, circles, stars, and random rectangles with round islands.
 
-use pocketeer::geom::{Contour, Point, Segment};
+use pocketeer::geom::{Arc, Contour, Line, Point, Segment};
 use pocketeer::import::Pocket;
 use proptest::prelude::*;
+
+/// The polygon through `pts`.
+pub fn polygon(pts: &[(f64, f64)]) -> Contour {
+    Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
+}
+
+/// The mirror image of `s` in the y axis (x → -x): its sense flips.
+pub fn mirror_segment(s: &Segment) -> Segment {
+    match s {
+        Segment::Line(l) => Segment::Line(Line::new(
+            Point::new(-l.start.x, l.start.y),
+            Point::new(-l.end.x, l.end.y),
+        )),
+        Segment::Arc(a) => Segment::Arc(Arc::new(
+            Point::new(-a.center.x, a.center.y),
+            a.radius,
+            std::f64::consts::PI - a.start_angle,
+            -a.sweep,
+        )),
+    }
+}
+
+/// `c` mirrored in the y axis, then reversed to keep its sense.
+pub fn mirrored(c: &Contour) -> Contour {
+    Contour::new(c.segments.iter().map(mirror_segment).collect()).reversed()
+}
 
 pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
     let p = Point::new;
