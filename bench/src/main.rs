@@ -1,6 +1,7 @@
 //! Times pocketeer's offsets against cavalier_contours 0.9.0 on the same inputs, and against
 //! Clipper2 (arcs flattened to 0.001 mm) on cases (a) and (c), every level from the original
-//! shape, and prints a Markdown table of medians and ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick]`.
+//! shape, and prints a Markdown table of medians and ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick] [--only PREFIX]
+//! [--no-clipper]`.
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
@@ -91,7 +92,11 @@ fn main() {
         "| case | levels | pocketeer ms | cavalier_contours ms | cavalier / pocketeer | Clipper2 ms | Clipper2 / pocketeer | area pocketeer | area cavalier | area Clipper2 |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for case in &list {
+    // `--only PREFIX`: just the cases whose names start with it, as "(a)".
+    let args: Vec<String> = std::env::args().collect();
+    let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));
+    let no_clipper = args.iter().any(|a| a == "--no-clipper");
+    for case in list.iter().filter(|c| only.is_none_or(|o| c.name.starts_with(o.as_str()))) {
         let reps = if case.name.contains("100000") { 3 } else { 7 };
         let p = pocket(case);
         let tol = Tolerance::for_extent(&p.boundary.bbox(), 0.001);
@@ -124,7 +129,8 @@ fn main() {
         // Clipper2 takes 96 s for the 10k-line case (one run): it runs once there and is left
         // out of the 10k-arc (flattened to far more vertices) and 100k cases.
         let big = case.name.contains("10000 lines");
-        let with_clipper = (case.name.starts_with("(a)") || case.name.starts_with("(c)"))
+        let with_clipper = !no_clipper
+            && (case.name.starts_with("(a)") || case.name.starts_with("(c)"))
             && !case.name.contains("100000")
             && !case.name.contains("10000 arcs");
         let (clip_ms, clip_ratio, clip_area) = if with_clipper {

@@ -234,8 +234,8 @@ fn short_segment() -> impl Strategy<Value = Segment> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
-    /// The index's nearest distance is the brute-force minimum (rstar's `nearest_neighbor`
-    /// alone misses it on some inputs).
+    /// The index's nearest distance is the brute-force minimum (the best-first search stops
+    /// only at an exact distance no box bound undercuts).
     #[test]
     fn index_distance_is_the_brute_force_minimum(
         segs in prop::collection::vec(prop_oneof![4 => short_segment(), 1 => arc()], 1..300),

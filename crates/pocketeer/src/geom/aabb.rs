@@ -75,6 +75,20 @@ impl Aabb {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }
 
+    /// Squared distance from `p` to the box (zero inside it).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Aabb, Point};
+    /// let b = Aabb::from_points(Point::new(0.0, 0.0), Point::new(2.0, 1.0));
+    /// assert_eq!(b.distance_sq(Point::new(5.0, 5.0)), 25.0);
+    /// assert_eq!(b.distance_sq(Point::new(1.0, 0.5)), 0.0);
+    /// ```
+    pub fn distance_sq(&self, p: Point) -> f64 {
+        let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
+        let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
+        dx * dx + dy * dy
+    }
+
     /// True when `o` lies entirely inside this box.
     pub fn contains_box(&self, o: &Aabb) -> bool {
         self.contains(o.min) && self.contains(o.max)

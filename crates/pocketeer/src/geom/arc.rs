@@ -2,7 +2,7 @@
 
 use super::{Aabb, Point, Vector};
 use serde::Serialize;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// A circular arc: centre, radius, start angle and signed sweep (positive = counter-clockwise).
 ///
@@ -214,11 +214,25 @@ impl Arc {
     /// Bounding box: the end points and every axis extreme the arc passes.
     pub fn bbox(&self) -> Aabb {
         let mut b = Aabb::from_points(self.start(), self.end());
-        for k in 0..4 {
-            let a = k as f64 * PI / 2.0;
-            if self.contains_angle(a, 0.0) {
-                b.add_point(self.point_at_angle(a));
+        let end = self.start_angle + self.sweep;
+        let (lo, hi) = (self.start_angle.min(end), self.start_angle.max(end));
+        // The axis directions k·π/2 with lo ≤ k·π/2 ≤ hi: at most five for a full circle.
+        let first = (lo / FRAC_PI_2).ceil();
+        for i in 0..5 {
+            let k = first + i as f64;
+            if k * FRAC_PI_2 > hi {
+                break;
             }
+            let (dx, dy) = match (k as i64).rem_euclid(4) {
+                0 => (1.0, 0.0),
+                1 => (0.0, 1.0),
+                2 => (-1.0, 0.0),
+                _ => (0.0, -1.0),
+            };
+            b.add_point(Point::new(
+                self.center.x + dx * self.radius,
+                self.center.y + dy * self.radius,
+            ));
         }
         b
     }
@@ -247,6 +261,7 @@ impl Arc {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     #[test]
     fn bulge_round_trip_both_directions() {
@@ -276,5 +291,32 @@ mod tests {
         assert!((b.max.y - 1.0).abs() < 1e-12 && b.min.y.abs() < 1e-12);
         let full = Arc::circle(Point::new(5.0, 5.0), 2.0);
         assert_eq!(full.bbox().width(), 4.0);
+    }
+
+    /// The box holds every point of the arc and is tight: arcs starting anywhere (angles
+    /// beyond ±2π too), of every sweep, both ways.
+    #[test]
+    fn bbox_is_the_hull_of_the_arc() {
+        for i in 0..40 {
+            for &sweep in &[0.01, 0.7, PI / 2.0, 2.5, PI, 4.0, 6.2, TAU, -0.7, -PI, -5.0, -TAU] {
+                let a = Arc::new(Point::new(-3.0, 8.0), 1.5, i as f64 * 0.37 - 9.0, sweep);
+                let b = a.bbox();
+                let mut hull = Aabb::EMPTY;
+                for k in 0..=4000 {
+                    let p = a.point_at(k as f64 / 4000.0);
+                    assert!(b.inflated(1e-12).contains(p), "{a:?}");
+                    hull.add_point(p);
+                }
+                // Samples 1/4000 of the sweep apart miss an extreme by at most r(1 - cos(π/4000)).
+                assert!(
+                    (b.min.x - hull.min.x).abs() < 1e-6 && (b.max.x - hull.max.x).abs() < 1e-6,
+                    "{a:?}"
+                );
+                assert!(
+                    (b.min.y - hull.min.y).abs() < 1e-6 && (b.max.y - hull.max.y).abs() < 1e-6,
+                    "{a:?}"
+                );
+            }
+        }
     }
 }

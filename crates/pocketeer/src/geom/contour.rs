@@ -117,6 +117,11 @@ fn crossings(seg: &Segment, from: Point, p: Point) -> i32 {
     if p.y < b.min.y.min(from.y) || p.y > b.max.y.max(from.y) || p.x >= b.max.x.max(from.x) {
         return 0;
     }
+    crossings_in_box(seg, from, p)
+}
+
+/// [`crossings`] for a point within the box of the segment and `from` (or left of it).
+fn crossings_in_box(seg: &Segment, from: Point, p: Point) -> i32 {
     match seg {
         Segment::Line(l) => ray_crossing(from, l.end, p, |y| {
             let (a, d) = (l.start, l.end - l.start);
@@ -124,20 +129,24 @@ fn crossings(seg: &Segment, from: Point, p: Point) -> i32 {
         }),
         Segment::Arc(arc) => {
             // Split the arc where its tangent is horizontal (top and bottom of the circle): each
-            // piece is monotone in y and lies in one half of the circle.
-            let mut cuts = vec![0.0];
+            // piece is monotone in y and lies in one half of the circle. A sweep of at most 2π
+            // passes such a point at most three times.
+            let mut cuts = [0.0; 5];
+            let mut n = 1;
             let (a0, sw) = (arc.start_angle, arc.sweep);
             let (lo, hi) = (a0.min(a0 + sw), a0.max(a0 + sw));
             let mut angle = PI / 2.0 + ((lo - PI / 2.0) / PI).ceil() * PI;
-            while angle < hi {
+            while angle < hi && n < 4 {
                 if angle > lo {
-                    cuts.push((angle - a0) / sw);
+                    cuts[n] = (angle - a0) / sw;
+                    n += 1;
                 }
                 angle += PI;
             }
-            cuts.sort_by(f64::total_cmp);
-            cuts.dedup();
-            cuts.push(1.0);
+            let cuts = &mut cuts[..=n];
+            cuts[n] = 1.0;
+            // Parameters grow with the angle for a counter-clockwise arc, fall for a clockwise.
+            cuts[1..n].sort_unstable_by(f64::total_cmp);
             let mut total = 0;
             for w in cuts.windows(2) {
                 let q0 = if w[0] == 0.0 { from } else { arc.point_at(w[0]) };
@@ -190,23 +199,32 @@ pub struct WindingIndex {
     y0: f64,
     dy: f64,
     strips: Vec<Vec<u32>>,
+    /// Each segment's box with the end of the segment before it, grown by the slack.
+    boxes: Vec<Aabb>,
 }
 
 impl WindingIndex {
     /// Files `segments` by strips.
     pub fn new(segments: &[Segment]) -> WindingIndex {
-        let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
+        let n = segments.len();
+        // Each segment also answers for the gap from the end of the one before it.
+        let boxes: Vec<Aabb> = (0..n)
+            .map(|i| {
+                let mut b = segments[i].bbox();
+                b.add_point(segments[(i + n - 1) % n].end());
+                b
+            })
+            .collect();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
-        // Each segment also answers for the rounding gap to the end of the one before it.
         let slack = 1e-9 * all.width().max(all.height()).max(1.0);
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(slack)).collect();
-        let n = segments.len();
         let height = all.height();
         if n == 0 || height.is_nan() || height <= 0.0 {
             return WindingIndex {
                 y0: 0.0,
                 dy: 1.0,
                 strips: vec![(0..n as u32).collect()],
+                boxes,
             };
         }
         // As many strips as keeps the filing within a few entries per segment: long, steep
@@ -239,6 +257,7 @@ impl WindingIndex {
             y0: all.min.y,
             dy: height / k as f64,
             strips,
+            boxes,
         }
     }
 
@@ -254,7 +273,11 @@ impl WindingIndex {
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                crossings(&segments[i], segments[(i + n - 1) % n].end(), p)
+                let b = &self.boxes[i];
+                if p.y < b.min.y || p.y > b.max.y || p.x >= b.max.x {
+                    return 0;
+                }
+                crossings_in_box(&segments[i], segments[(i + n - 1) % n].end(), p)
             })
             .sum()
     }

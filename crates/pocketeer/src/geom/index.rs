@@ -1,10 +1,10 @@
-//! A spatial index over bounding boxes (an R*-tree from the `rstar` crate), for finding the
-//! pairs of elements that may touch without testing every pair.
+//! Spatial indexes over bounding boxes and segments (on a [`PackedTree`]), for finding the
+//! pairs of elements that may touch, and distances, without testing every pair.
 
-use super::{point_distance, segment_distance, Aabb, Point, Segment};
-use rstar::{primitives::GeomWithData, primitives::Rectangle, PointDistance, RTree, RTreeObject, AABB};
-
-type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;
+#[cfg(test)]
+use super::point_distance;
+use super::{segment_distance, Aabb, PackedTree, Point, Segment, Vector};
+use std::f64::consts::{PI, TAU};
 
 /// Boxes indexed by their position in the slice they were built from.
 ///
@@ -20,49 +20,34 @@ type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;
 /// assert_eq!(index.at_point(Point::new(5.5, 5.5)).collect::<Vec<_>>(), vec![2]);
 /// ```
 pub struct BoxIndex {
-    tree: RTree<Entry>,
-}
-
-fn envelope(b: &Aabb) -> AABB<[f64; 2]> {
-    AABB::from_corners([b.min.x, b.min.y], [b.max.x, b.max.y])
+    tree: PackedTree,
 }
 
 impl BoxIndex {
     /// Indexes `boxes` (empty boxes are left out).
     pub fn new(boxes: &[Aabb]) -> BoxIndex {
-        let entries = boxes
-            .iter()
-            .enumerate()
-            .filter(|(_, b)| !b.is_empty())
-            .map(|(i, b)| {
-                GeomWithData::new(Rectangle::from_corners([b.min.x, b.min.y], [b.max.x, b.max.y]), i)
-            })
-            .collect();
         BoxIndex {
-            tree: RTree::bulk_load(entries),
+            tree: PackedTree::new(boxes),
         }
     }
 
     /// Indices of the boxes that intersect `b`.
-    pub fn intersecting<'a>(&'a self, b: &Aabb) -> impl Iterator<Item = usize> + 'a {
-        self.tree
-            .locate_in_envelope_intersecting(&envelope(b))
-            .map(|e| e.data)
+    pub fn intersecting(&self, b: &Aabb) -> impl Iterator<Item = usize> + '_ {
+        let b = *b;
+        self.tree.search(move |x| x.intersects(&b))
     }
 
     /// Indices of the boxes that contain `p`.
     pub fn at_point(&self, p: Point) -> impl Iterator<Item = usize> + '_ {
-        self.tree.locate_all_at_point(&[p.x, p.y]).map(|e| e.data)
+        self.tree.search(move |x| x.contains(p))
     }
 
     /// Every pair `(i, j)`, `i < j`, of intersecting boxes, sorted.
     pub fn pairs(&self) -> Vec<(usize, usize)> {
-        // One simultaneous walk of the tree against itself: cheaper than a query per box.
         let mut out: Vec<(usize, usize)> = self
             .tree
-            .intersection_candidates_with_other_tree(&self.tree)
-            .filter(|(a, b)| a.data < b.data)
-            .map(|(a, b)| (a.data, b.data))
+            .items()
+            .flat_map(|(i, b)| self.intersecting(b).filter(move |&j| i < j).map(move |j| (i, j)))
             .collect();
         out.sort_unstable();
         out
@@ -156,24 +141,9 @@ pub fn for_each_overlapping_pair(
     Ok(())
 }
 
-/// A segment filed in an R-tree by its bounding box (computed once: the tree asks often).
-struct Filed(Segment, AABB<[f64; 2]>);
-
-impl RTreeObject for Filed {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        self.1
-    }
-}
-
-impl PointDistance for Filed {
-    fn distance_2(&self, point: &[f64; 2]) -> f64 {
-        point_distance(&self.0, Point::new(point[0], point[1])).powi(2)
-    }
-}
-
-/// Segments indexed for nearest-distance queries: a best-first search through the R-tree
-/// visits only the few segments near the query point, however many there are.
+/// Segments indexed for distance queries: a best-first search through a [`PackedTree`]
+/// visits only the few segments near the query point, however many there are. Each arc's end
+/// points are computed once, so that measuring a distance takes no trigonometry.
 ///
 /// ```
 /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
@@ -184,14 +154,66 @@ impl PointDistance for Filed {
 /// assert!((index.distance(Point::new(50.5, 3.0)) - 3.0).abs() < 1e-12);
 /// ```
 pub struct SegmentIndex {
-    tree: RTree<Filed>,
+    tree: PackedTree,
+    segments: Vec<Measured>,
+}
+
+/// A segment with what measuring distances to it needs.
+struct Measured {
+    segment: Segment,
+    start: Point,
+    end: Point,
+}
+
+impl Measured {
+    fn new(segment: Segment) -> Measured {
+        Measured {
+            segment,
+            start: segment.start(),
+            end: segment.end(),
+        }
+    }
+
+    /// Distance from `p`: [`point_distance`], with the arc's ends known.
+    fn distance(&self, p: Point) -> f64 {
+        match &self.segment {
+            Segment::Line(l) => l.point_at(l.param_of(p).clamp(0.0, 1.0)).distance(p),
+            Segment::Arc(a) => {
+                let v = p - a.center;
+                if in_sweep(a.sweep, self.start - a.center, self.end - a.center, v) {
+                    (v.length() - a.radius).abs()
+                } else {
+                    self.start.distance(p).min(self.end.distance(p))
+                }
+            }
+        }
+    }
+}
+
+/// True when the direction `v` from an arc's centre lies within its sweep, the arc running
+/// from direction `s` to direction `e` (counter-clockwise when `sweep` > 0): sign tests instead
+/// of an angle. The centre itself (`v` zero) counts as within.
+fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
+    if sweep.abs() >= TAU {
+        return true;
+    }
+    // Counter-clockwise from `from` to `to`.
+    let (from, to) = if sweep > 0.0 { (s, e) } else { (e, s) };
+    if sweep.abs() <= PI {
+        from.cross(v) >= 0.0 && v.cross(to) >= 0.0
+    } else {
+        // The gap from `to` round to `from` is less than half a turn.
+        !(to.cross(v) > 0.0 && v.cross(from) > 0.0)
+    }
 }
 
 impl SegmentIndex {
     /// Indexes `segments`.
     pub fn new(segments: &[Segment]) -> SegmentIndex {
+        let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
         SegmentIndex {
-            tree: RTree::bulk_load(segments.iter().map(|s| Filed(*s, envelope(&s.bbox()))).collect()),
+            tree: PackedTree::new(&boxes),
+            segments: segments.iter().map(|s| Measured::new(*s)).collect(),
         }
     }
 
@@ -206,11 +228,14 @@ impl SegmentIndex {
     /// profile, with `r` close to its radius, that is most of them.
     pub fn any_within_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
         *work += 1;
-        r > 0.0
-            && self.tree.locate_within_distance([p.x, p.y], r * r).any(|f| {
-                *work += 1;
-                point_distance(&f.0, p) < r
-            })
+        if r.is_nan() || r <= 0.0 {
+            return false;
+        }
+        let r2 = r * r;
+        self.tree.search(|b| b.distance_sq(p) <= r2).any(|i| {
+            *work += 1;
+            self.segments[i].distance(p) < r
+        })
     }
 
     /// True when some segment comes nearer to the segment `s` than `r` (`eps`: the geometric
@@ -228,25 +253,20 @@ impl SegmentIndex {
         if r.is_nan() || r <= 0.0 {
             return false;
         }
-        let b = s.bbox();
-        let query = AABB::from_corners([b.min.x - r, b.min.y - r], [b.max.x + r, b.max.y + r]);
+        let query = s.bbox().inflated(r);
         self.tree
-            .locate_in_envelope_intersecting(&query)
-            .any(|f| segment_distance(&f.0, s, eps).0 < r)
+            .search(|b| b.intersects(&query))
+            .any(|i| segment_distance(&self.segments[i].segment, s, eps).0 < r)
     }
 
     /// The nearest segment to the segment `s` if one is nearer than `limit`: the distance and
     /// the nearest point on `s`.
     pub fn nearest_to_segment(&self, s: &Segment, limit: f64, eps: f64) -> Option<(f64, Point)> {
-        let b = s.bbox();
-        let query = AABB::from_corners(
-            [b.min.x - limit, b.min.y - limit],
-            [b.max.x + limit, b.max.y + limit],
-        );
+        let query = s.bbox().inflated(limit);
         self.tree
-            .locate_in_envelope_intersecting(&query)
-            .map(|f| {
-                let (d, on_s, _) = segment_distance(s, &f.0, eps);
+            .search(|b| b.intersects(&query))
+            .map(|i| {
+                let (d, on_s, _) = segment_distance(s, &self.segments[i].segment, eps);
                 (d, on_s)
             })
             .filter(|(d, _)| *d < limit)
@@ -255,12 +275,38 @@ impl SegmentIndex {
 
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
-        // Not `nearest_neighbor`: its pruning by the boxes' min-max distance can miss the
-        // nearest segment (rstar issue #13, seen here on a pocket program); the iterator
-        // orders candidates by exact lower bounds.
         self.tree
-            .nearest_neighbor_iter(&[p.x, p.y])
-            .next()
-            .map_or(f64::INFINITY, |f| point_distance(&f.0, p))
+            .nearest(|b| b.distance_sq(p).sqrt(), |i| self.segments[i].distance(p))
+            .map_or(f64::INFINITY, |(_, d)| d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Arc;
+
+    /// The sign tests agree with the angle test of [`point_distance`] all round arcs of every
+    /// kind of sweep, both ways.
+    #[test]
+    fn measured_distance_matches_point_distance() {
+        let c = Point::new(3.0, -2.0);
+        for &sweep in &[0.3, 1.5, PI, 4.0, 6.0, TAU, -0.3, -PI, -4.0, -TAU] {
+            for k in 0..12 {
+                let a = Arc::new(c, 2.0, k as f64 * 0.55 - 3.0, sweep);
+                let m = Measured::new(Segment::Arc(a));
+                for j in 0..72 {
+                    let t = j as f64 * TAU / 72.0 + 0.01;
+                    for r in [0.0, 0.5, 2.0, 3.5] {
+                        let p = c + Vector::from_angle(t) * r;
+                        let want = point_distance(&Segment::Arc(a), p);
+                        assert!(
+                            (m.distance(p) - want).abs() < 1e-12,
+                            "sweep {sweep} k {k} j {j} r {r}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -8,6 +8,7 @@ pub mod distance;
 mod index;
 pub mod intersect;
 mod line;
+mod packed;
 mod point;
 mod segment;
 mod stitch;
@@ -20,6 +21,7 @@ pub use distance::{closest_param, closest_point, point_distance, segment_distanc
 pub use index::{for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex};
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
+pub use packed::{PackedTree, Search};
 pub use point::{Point, Vector};
 pub use segment::Segment;
 pub(crate) use stitch::pieces_by_node;

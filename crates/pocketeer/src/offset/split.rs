@@ -74,14 +74,14 @@ pub fn split(
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
         let hits = intersect(&pieces[i].segment, &pieces[j].segment, tol.eps);
         for h in hits.iter() {
-            let meets: Vec<(f64, f64, Point)> = match h {
-                Intersection::Point { point, ta, tb } => vec![(ta, tb, point)],
+            let (first, second) = match h {
+                Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
                 Intersection::Overlap { a, b } => {
                     let s = &pieces[i].segment;
-                    vec![(a.0, b.0, s.point_at(a.0)), (a.1, b.1, s.point_at(a.1))]
+                    ((a.0, b.0, s.point_at(a.0)), Some((a.1, b.1, s.point_at(a.1))))
                 }
             };
-            for (ta, tb, p) in meets {
+            for (ta, tb, p) in std::iter::once(first).chain(second) {
                 let node = match (end_node(i, ta), end_node(j, tb)) {
                     (Some(x), Some(y)) => {
                         nodes.union(x, y);
