@@ -30,3 +30,37 @@ pub fn pocket(case: &Case) -> Pocket {
         islands: case.rings[1..].iter().map(contour).collect(),
     }
 }
+
+/// Clipper2 on a 10 nm integer grid, so that rounding stays far below the flattening error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub struct TenNano;
+
+impl clipper2::PointScaler for TenNano {
+    const MULTIPLIER: f64 = 1e5;
+}
+
+/// The rings as polygons whose chords stray at most 0.001 mm from the arcs.
+pub fn flattened(case: &Case) -> clipper2::Paths<TenNano> {
+    let paths: Vec<clipper2::Path<TenNano>> = case
+        .rings
+        .iter()
+        .map(|ring| {
+            let mut pts: Vec<(f64, f64)> = Vec::new();
+            for s in &contour(ring).segments {
+                let steps = match s {
+                    pocketeer::geom::Segment::Line(_) => 1,
+                    pocketeer::geom::Segment::Arc(a) => {
+                        let max_step = 2.0 * (1.0 - 0.001 / a.radius).clamp(-1.0, 1.0).acos();
+                        (a.sweep.abs() / max_step).ceil().max(1.0) as usize
+                    }
+                };
+                for k in 0..steps {
+                    let p = s.point_at(k as f64 / steps as f64);
+                    pts.push((p.x, p.y));
+                }
+            }
+            pts.into()
+        })
+        .collect();
+    paths.into()
+}

@@ -1,48 +1,14 @@
 //! Times pocketeer's offsets against cavalier_contours 0.9.0 on the same inputs, and against
 //! Clipper2 (arcs flattened to 0.001 mm) on cases (a) and (c), every level from the original
 //! shape, and prints a Markdown table of medians and ratios. Run: `cargo run --release --manifest-path bench/Cargo.toml [-- --quick] [--only PREFIX]
-//! [--no-clipper]`.
+//! [--no-clipper] [--clipper-all]`.
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use pocketeer::geom::{Contour, Tolerance};
 use pocketeer_bench::cases::{self, Case};
-use pocketeer_bench::pocket;
+use pocketeer_bench::{flattened, pocket};
 use std::time::{Duration, Instant};
-
-/// Clipper2 on a 10 nm integer grid, so that rounding stays far below the flattening error.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
-struct TenNano;
-
-impl clipper2::PointScaler for TenNano {
-    const MULTIPLIER: f64 = 1e5;
-}
-
-/// The rings as polygons whose chords stray at most 0.001 mm from the arcs.
-fn flattened(case: &Case) -> clipper2::Paths<TenNano> {
-    let paths: Vec<clipper2::Path<TenNano>> = case
-        .rings
-        .iter()
-        .map(|ring| {
-            let mut pts: Vec<(f64, f64)> = Vec::new();
-            for s in &pocketeer_bench::contour(ring).segments {
-                let steps = match s {
-                    pocketeer::geom::Segment::Line(_) => 1,
-                    pocketeer::geom::Segment::Arc(a) => {
-                        let max_step = 2.0 * (1.0 - 0.001 / a.radius).clamp(-1.0, 1.0).acos();
-                        (a.sweep.abs() / max_step).ceil().max(1.0) as usize
-                    }
-                };
-                for k in 0..steps {
-                    let p = s.point_at(k as f64 / steps as f64);
-                    pts.push((p.x, p.y));
-                }
-            }
-            pts.into()
-        })
-        .collect();
-    paths.into()
-}
 
 fn shape(case: &Case) -> Shape<f64> {
     let plines = case.rings.iter().map(|ring| {
@@ -94,9 +60,17 @@ fn main() {
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     // `--only PREFIX`: just the cases whose names start with it, as "(a)".
     let args: Vec<String> = std::env::args().collect();
-    let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1));
     let no_clipper = args.iter().any(|a| a == "--no-clipper");
-    for case in list.iter().filter(|c| only.is_none_or(|o| c.name.starts_with(o.as_str()))) {
+    // `--clipper-all`: Clipper2 on every (a) and (c) case, once where it is slow (hours at 100k).
+    let clipper_all = args.iter().any(|a| a == "--clipper-all");
+    for case in list
+        .iter()
+        .filter(|c| only.is_none_or(|o| c.name.starts_with(o.as_str())))
+    {
         let reps = if case.name.contains("100000") { 3 } else { 7 };
         let p = pocket(case);
         let tol = Tolerance::for_extent(&p.boundary.bbox(), 0.001);
@@ -105,7 +79,8 @@ fn main() {
         // All levels in one call: on both cores, deeper levels from the sources of shallower.
         let (ours, our_area) = time(reps, || {
             region
-                .offset_levels(&case.distances, &tol).unwrap()
+                .offset_levels(&case.distances, &tol)
+                .unwrap()
                 .iter()
                 .flatten()
                 .map(Contour::signed_area)
@@ -127,12 +102,11 @@ fn main() {
                 .sum::<f64>()
         });
         // Clipper2 takes 96 s for the 10k-line case (one run): it runs once there and is left
-        // out of the 10k-arc (flattened to far more vertices) and 100k cases.
-        let big = case.name.contains("10000 lines");
+        // out of the 10k-arc (flattened to far more vertices) and 100k cases unless asked.
+        let big = case.name.contains("10000 ") || case.name.contains("100000");
         let with_clipper = !no_clipper
             && (case.name.starts_with("(a)") || case.name.starts_with("(c)"))
-            && !case.name.contains("100000")
-            && !case.name.contains("10000 arcs");
+            && (clipper_all || !(case.name.contains("100000") || case.name.contains("10000 arcs")));
         let (clip_ms, clip_ratio, clip_area) = if with_clipper {
             let paths = flattened(case);
             let (t, area) = time(if big { 1 } else { reps }, || {

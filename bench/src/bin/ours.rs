@@ -14,7 +14,8 @@ fn main() {
         .distances
         .iter()
         .map(|&d| {
-            pocketeer::offset::offset_pocket(&pocket, d, &tol).unwrap()
+            pocketeer::offset::offset_pocket(&pocket, d, &tol)
+                .unwrap()
                 .iter()
                 .map(Contour::signed_area)
                 .sum::<f64>()

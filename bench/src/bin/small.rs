@@ -17,7 +17,8 @@ fn main() {
     let mut total = 0.0;
     for _ in 0..n {
         total += region
-            .offset_levels(&case.distances, &tol).unwrap()
+            .offset_levels(&case.distances, &tol)
+            .unwrap()
             .iter()
             .flatten()
             .map(Contour::signed_area)
