@@ -247,4 +247,20 @@ proptest! {
             prop_assert!((index.distance(q) - brute).abs() <= 1e-9, "{} vs {}", index.distance(q), brute);
         }
     }
+
+    /// `any_within` says yes exactly when some segment is nearer than the radius (away from
+    /// the boundary case, where rounding may decide either way).
+    #[test]
+    fn index_any_within_is_the_brute_force_answer(
+        segs in prop::collection::vec(prop_oneof![4 => short_segment(), 1 => arc()], 1..300),
+        queries in prop::collection::vec((point(), 0.01f64..20.0), 1..40),
+    ) {
+        let index = SegmentIndex::new(&segs);
+        for (q, r) in queries {
+            let brute = segs.iter().map(|s| point_distance(s, q)).fold(f64::INFINITY, f64::min);
+            if (brute - r).abs() > 1e-9 {
+                prop_assert_eq!(index.any_within(q, r), brute < r, "at {:?} r {}: nearest {}", q, r, brute);
+            }
+        }
+    }
 }
