@@ -400,7 +400,9 @@ fn erode(
     let (loops, _lost) = stitch(&kept);
     let loops = loops
         .into_iter()
-        .filter(|l| l.signed_area().abs() > tol.eps * l.length())
+        // A loop whose mean width (twice its area over its length) is within the distance
+        // slack is a sliver of rounding where offset curves touch, no region.
+        .filter(|l| l.signed_area().abs() > prune::slack(d, tol) * l.length())
         .collect();
     Ok((loops, Sources { used: Some(used) }))
 }
