@@ -102,7 +102,7 @@ fn main() {
                 .sum::<f64>()
         });
         // Clipper2 takes 96 s for the 10k-line case (one run): it runs once there and is left
-        // out of the 10k-arc (flattened to far more vertices) and 100k cases unless asked.
+        // out of the 10k-arc (204 s once) and 100k cases unless asked.
         let big = case.name.contains("10000 ") || case.name.contains("100000");
         let with_clipper = !no_clipper
             && (case.name.starts_with("(a)") || case.name.starts_with("(c)"))

@@ -438,3 +438,23 @@ fn near_reversals_whose_moved_sides_do_not_cross_keep_their_tip_arc() {
     ];
     case(&v, &[], 62211);
 }
+
+/// Found by the eighth run (three inputs, all alike): a semicircle of radius exactly d (0.165)
+/// offsets onto its centre C, and the next element turns left from it by 3e-5 rad. Its moved
+/// start lies 5e-6 mm from C, inside the semicircle's disc; the true offset leaves C along
+/// the node circle of the semicircle's other joint for another 9e-6 mm before meeting it. The
+/// raw offset joins the two with a chord 5e-6 long, 2.6e-6 inside d: the documented exception
+/// to the 1e-6 mm accuracy (joining chords within 1e-5 mm, `offset` module docs).
+#[test]
+#[ignore = "known: joining chord 2.6e-6 mm inside d after an arc of radius exactly d (documented exception, within 1e-5 mm)"]
+fn a_left_turn_out_of_an_arc_of_radius_d() {
+    case(
+        &[
+            (-25188, -25709, 1),
+            (-25701, -25701, -128),
+            (-25701, -25668, -128),
+        ],
+        &[],
+        155,
+    );
+}

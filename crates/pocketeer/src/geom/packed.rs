@@ -66,7 +66,7 @@ impl PackedTree {
         // Grid cell of a box's centre; `as` saturates, and a NaN box goes to cell 0.
         let cell = |v: f64, lo: f64, span: f64| -> u32 {
             if span > 0.0 {
-                ((v - lo) / span * 65535.0) as u32
+                ((v - lo) / span * 65535.0).min(65535.0) as u32
             } else {
                 0
             }
