@@ -227,15 +227,32 @@ impl SegmentIndex {
     /// segment it measured (those whose boxes come within `r`): near the middle of a round
     /// profile, with `r` close to its radius, that is most of them.
     pub fn any_within_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
+        self.any_within_after(p, r, work, &mut None)
+    }
+
+    /// [`SegmentIndex::any_within_counted`] that measures the segment `last` found first and
+    /// keeps the one it finds there: queries made in order along a curve are mostly answered
+    /// by the segment that answered the one before.
+    pub fn any_within_after(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
         *work += 1;
         if r.is_nan() || r <= 0.0 {
             return false;
         }
+        if let Some(m) = last.and_then(|i| self.segments.get(i)) {
+            *work += 1;
+            if m.distance(p) < r {
+                return true;
+            }
+        }
         let r2 = r * r;
-        self.tree.search(|b| b.distance_sq(p) <= r2).any(|i| {
+        let found = self.tree.search(|b| b.distance_sq(p) <= r2).find(|&i| {
             *work += 1;
             self.segments[i].distance(p) < r
-        })
+        });
+        if found.is_some() {
+            *last = found;
+        }
+        found.is_some()
     }
 
     /// True when some segment comes nearer to the segment `s` than `r` (`eps`: the geometric

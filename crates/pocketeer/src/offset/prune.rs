@@ -40,9 +40,10 @@ impl Profile {
         self.index.any_within(p, r)
     }
 
-    /// [`Profile::nearer_than`], adding to `work` the number of elements measured.
-    pub fn nearer_than_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
-        self.index.any_within_counted(p, r, work)
+    /// [`Profile::nearer_than`], adding to `work` the number of elements measured and trying
+    /// first the element that answered `last` (see [`SegmentIndex::any_within_after`]).
+    pub fn nearer_than_after(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
+        self.index.any_within_after(p, r, work, last)
     }
 
     /// Distance from `p` to the profile.
@@ -101,13 +102,14 @@ pub fn prune(
         }
     }
     let mut work = 0;
+    let mut last = None;
     let mut valid = vec![false; longest.len()];
     for (v, &i) in valid.iter_mut().zip(&longest) {
         if i == usize::MAX {
             continue;
         }
         let m = pieces[i].segment.point_at(0.5);
-        *v = !profile.nearer_than_counted(m, d - slack, &mut work) && inside(m);
+        *v = !profile.nearer_than_after(m, d - slack, &mut work, &mut last) && inside(m);
         if work > MAX_MEASURES {
             return Err(m);
         }
