@@ -113,11 +113,17 @@ fn ray_crossing(a: Point, b: Point, p: Point, x_at: impl Fn(f64) -> f64) -> i32 
 /// chain closes only up to rounding (a quarter arc ends 1e-14 from where the next begins), and
 /// a ray passing through that gap would cross neither; with shared joints it crosses one.
 fn crossings(seg: &Segment, from: Point, p: Point) -> i32 {
-    let b = seg.bbox();
-    if p.y < b.min.y.min(from.y) || p.y > b.max.y.max(from.y) || p.x >= b.max.x.max(from.x) {
+    let mut b = seg.bbox();
+    b.add_point(from);
+    if ray_misses(&b, p) {
         return 0;
     }
     crossings_in_box(seg, from, p)
+}
+
+/// True when the ray from `p` towards +x cannot meet anything inside the box `b`.
+fn ray_misses(b: &Aabb, p: Point) -> bool {
+    p.y < b.min.y || p.y > b.max.y || p.x >= b.max.x
 }
 
 /// [`crossings`] for a point within the box of the segment and `from` (or left of it).
@@ -273,8 +279,7 @@ impl WindingIndex {
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                let b = &self.boxes[i];
-                if p.y < b.min.y || p.y > b.max.y || p.x >= b.max.x {
+                if ray_misses(&self.boxes[i], p) {
                     return 0;
                 }
                 crossings_in_box(&segments[i], segments[(i + n - 1) % n].end(), p)

@@ -1,6 +1,7 @@
 //! Closest points and distances between points, lines and arcs.
 
-use super::{intersect, Arc, Line, Point, Segment};
+use super::{intersect, Arc, Line, Point, Segment, Vector};
+use std::f64::consts::{PI, TAU};
 
 /// Parameter of the point of `seg` nearest to `p`.
 pub fn closest_param(seg: &Segment, p: Point) -> f64 {
@@ -53,8 +54,37 @@ pub fn point_distance(seg: &Segment, p: Point) -> f64 {
     }
 }
 
-fn line_point_distance(l: &Line, p: Point) -> f64 {
+/// Distance from `p` to the line segment `l`.
+pub(crate) fn line_point_distance(l: &Line, p: Point) -> f64 {
     l.point_at(l.param_of(p).clamp(0.0, 1.0)).distance(p)
+}
+
+/// Distance from `p` to the arc `a` whose end points `start` and `end` are already known:
+/// [`point_distance`] without trigonometry, for indexes that measure the same arcs often.
+pub(crate) fn arc_point_distance_with_ends(a: &Arc, start: Point, end: Point, p: Point) -> f64 {
+    let v = p - a.center;
+    if in_sweep(a.sweep, start - a.center, end - a.center, v) {
+        (v.length() - a.radius).abs()
+    } else {
+        start.distance(p).min(end.distance(p))
+    }
+}
+
+/// True when the direction `v` from an arc's centre lies within its sweep, the arc running
+/// from direction `s` to direction `e` (counter-clockwise when `sweep` > 0): sign tests instead
+/// of an angle. The centre itself (`v` zero) counts as within.
+fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
+    if sweep.abs() >= TAU {
+        return true;
+    }
+    // Counter-clockwise from `from` to `to`.
+    let (from, to) = if sweep > 0.0 { (s, e) } else { (e, s) };
+    if sweep.abs() <= PI {
+        from.cross(v) >= 0.0 && v.cross(to) >= 0.0
+    } else {
+        // The gap from `to` round to `from` is less than half a turn.
+        !(to.cross(v) > 0.0 && v.cross(from) > 0.0)
+    }
 }
 
 /// Distance between two segments, with the nearest point of each.

@@ -1,10 +1,8 @@
 //! Spatial indexes over bounding boxes and segments (on a [`PackedTree`]), for finding the
 //! pairs of elements that may touch, and distances, without testing every pair.
 
-#[cfg(test)]
-use super::point_distance;
-use super::{segment_distance, Aabb, PackedTree, Point, Segment, Vector};
-use std::f64::consts::{PI, TAU};
+use super::distance::{arc_point_distance_with_ends, line_point_distance};
+use super::{segment_distance, Aabb, PackedTree, Point, Segment};
 
 /// Boxes indexed by their position in the slice they were built from.
 ///
@@ -174,36 +172,12 @@ impl Measured {
         }
     }
 
-    /// Distance from `p`: [`point_distance`], with the arc's ends known.
+    /// Distance from `p`: [`point_distance`](super::point_distance), with the arc's ends known.
     fn distance(&self, p: Point) -> f64 {
         match &self.segment {
-            Segment::Line(l) => l.point_at(l.param_of(p).clamp(0.0, 1.0)).distance(p),
-            Segment::Arc(a) => {
-                let v = p - a.center;
-                if in_sweep(a.sweep, self.start - a.center, self.end - a.center, v) {
-                    (v.length() - a.radius).abs()
-                } else {
-                    self.start.distance(p).min(self.end.distance(p))
-                }
-            }
+            Segment::Line(l) => line_point_distance(l, p),
+            Segment::Arc(a) => arc_point_distance_with_ends(a, self.start, self.end, p),
         }
-    }
-}
-
-/// True when the direction `v` from an arc's centre lies within its sweep, the arc running
-/// from direction `s` to direction `e` (counter-clockwise when `sweep` > 0): sign tests instead
-/// of an angle. The centre itself (`v` zero) counts as within.
-fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
-    if sweep.abs() >= TAU {
-        return true;
-    }
-    // Counter-clockwise from `from` to `to`.
-    let (from, to) = if sweep > 0.0 { (s, e) } else { (e, s) };
-    if sweep.abs() <= PI {
-        from.cross(v) >= 0.0 && v.cross(to) >= 0.0
-    } else {
-        // The gap from `to` round to `from` is less than half a turn.
-        !(to.cross(v) > 0.0 && v.cross(from) > 0.0)
     }
 }
 
@@ -220,19 +194,14 @@ impl SegmentIndex {
     /// True when some segment comes nearer to `p` than `r`: stops at the first one found, so it
     /// is cheaper than [`SegmentIndex::distance`] when the answer is yes.
     pub fn any_within(&self, p: Point, r: f64) -> bool {
-        self.any_within_counted(p, r, &mut 0)
+        self.any_within_after(p, r, &mut 0, &mut None)
     }
 
-    /// [`SegmentIndex::any_within`], adding to `work` one for the search and one for every
-    /// segment it measured (those whose boxes come within `r`): near the middle of a round
-    /// profile, with `r` close to its radius, that is most of them.
-    pub fn any_within_counted(&self, p: Point, r: f64, work: &mut u64) -> bool {
-        self.any_within_after(p, r, work, &mut None)
-    }
-
-    /// [`SegmentIndex::any_within_counted`] that measures the segment `last` found first and
-    /// keeps the one it finds there: queries made in order along a curve are mostly answered
-    /// by the segment that answered the one before.
+    /// [`SegmentIndex::any_within`] that measures first the segment `last` found and keeps
+    /// the one it finds there (queries made in order along a curve are mostly answered by the
+    /// segment that answered the one before), adding to `work` one for the search and one for
+    /// every segment it measured (those whose boxes come within `r`): near the middle of a
+    /// round profile, with `r` close to its radius, that is most of them.
     pub fn any_within_after(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
         *work += 1;
         if r.is_nan() || r <= 0.0 {
@@ -301,7 +270,8 @@ impl SegmentIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Arc;
+    use crate::geom::{point_distance, Arc, Vector};
+    use std::f64::consts::{PI, TAU};
 
     /// The sign tests agree with the angle test of [`point_distance`] all round arcs of every
     /// kind of sweep, both ways.

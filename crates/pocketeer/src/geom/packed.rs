@@ -75,8 +75,7 @@ impl PackedTree {
             let c = Point::new(0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y));
             hilbert(cell(c.x, extent.min.x, w), cell(c.y, extent.min.y, h))
         };
-        let keys: Vec<u64> = boxes.iter().map(key).collect();
-        items.sort_unstable_by_key(|&i| keys[i]);
+        items.sort_by_cached_key(|&i| key(&boxes[i]));
         let mut tree_boxes: Vec<Aabb> = items.iter().map(|&i| boxes[i]).collect();
         let mut ids = items;
         let mut level_ends = vec![tree_boxes.len()];
