@@ -64,3 +64,15 @@ pub fn flattened(case: &Case) -> clipper2::Paths<TenNano> {
         .collect();
     paths.into()
 }
+
+/// The area of `paths` eroded by `d` with Clipper2 (round joins), as the benchmarks compare it.
+pub fn clipper_eroded_area(paths: &clipper2::Paths<TenNano>, d: f64) -> f64 {
+    clipper2::inflate(
+        paths.clone(),
+        -d,
+        clipper2::JoinType::Round,
+        clipper2::EndType::Polygon,
+        2.0,
+    )
+    .signed_area()
+}

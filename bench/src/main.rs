@@ -7,7 +7,7 @@ use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use pocketeer::geom::{Contour, Tolerance};
 use pocketeer_bench::cases::{self, Case};
-use pocketeer_bench::{flattened, pocket};
+use pocketeer_bench::{clipper_eroded_area, flattened, pocket};
 use std::time::{Duration, Instant};
 
 fn shape(case: &Case) -> Shape<f64> {
@@ -39,7 +39,8 @@ fn ms(d: Duration) -> String {
 }
 
 fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
+    let args: Vec<String> = std::env::args().collect();
+    let quick = args.iter().any(|a| a == "--quick");
     let mut list = vec![
         cases::rounded_with_islands(),
         cases::gear(),
@@ -59,7 +60,6 @@ fn main() {
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     // `--only PREFIX`: just the cases whose names start with it, as "(a)".
-    let args: Vec<String> = std::env::args().collect();
     let only = args
         .iter()
         .position(|a| a == "--only")
@@ -112,16 +112,7 @@ fn main() {
             let (t, area) = time(if big { 1 } else { reps }, || {
                 case.distances
                     .iter()
-                    .map(|&d| {
-                        clipper2::inflate(
-                            paths.clone(),
-                            -d,
-                            clipper2::JoinType::Round,
-                            clipper2::EndType::Polygon,
-                            2.0,
-                        )
-                        .signed_area()
-                    })
+                    .map(|&d| clipper_eroded_area(&paths, d))
                     .sum::<f64>()
             });
             (

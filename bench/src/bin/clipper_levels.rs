@@ -3,7 +3,7 @@
 //! `cargo run --release --bin clipper_levels -- N lines|arcs LEVEL...` (levels counted from 0).
 
 use pocketeer::geom::{Contour, Tolerance};
-use pocketeer_bench::{cases, flattened};
+use pocketeer_bench::{cases, clipper_eroded_area, flattened};
 use std::time::Instant;
 
 fn main() {
@@ -34,14 +34,7 @@ fn main() {
             .sum();
         let ours_ms = t.elapsed().as_secs_f64() * 1e3;
         let t = Instant::now();
-        let theirs = clipper2::inflate(
-            paths.clone(),
-            -d,
-            clipper2::JoinType::Round,
-            clipper2::EndType::Polygon,
-            2.0,
-        )
-        .signed_area();
+        let theirs = clipper_eroded_area(&paths, d);
         let clip_ms = t.elapsed().as_secs_f64() * 1e3;
         println!(
             "level {level} d {d:.2}: pocketeer {ours_ms:.1} ms (area {ours:.3}), Clipper2 {clip_ms:.1} ms (area {theirs:.3}), ratio {:.1}",
