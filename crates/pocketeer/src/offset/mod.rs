@@ -259,38 +259,6 @@ impl Sources {
     }
 }
 
-/// Keeps the raw pieces `smaller` allows. `rings` are the ranges of `raw` holding each
-/// contour's ring in order; sources from `elements` on are joints. A joint's piece is kept
-/// with its joint or with a kept element piece next to it in the ring, so that no ring opens
-/// where a loop may still run through it.
-fn keep_sources(
-    raw: Vec<Piece>,
-    rings: &[std::ops::Range<usize>],
-    elements: usize,
-    smaller: &Sources,
-) -> Vec<Piece> {
-    if smaller.used.is_none() {
-        return raw;
-    }
-    let own: Vec<bool> = raw.iter().map(|p| smaller.has(p.source)).collect();
-    let mut keep = own.clone();
-    for ring in rings {
-        let n = ring.len();
-        for k in 0..n {
-            let i = ring.start + k;
-            if !own[i] && raw[i].source as usize >= elements {
-                let prev = ring.start + (k + n - 1) % n;
-                let next = ring.start + (k + 1) % n;
-                keep[i] = own[prev] || own[next];
-            }
-        }
-    }
-    raw.into_iter()
-        .zip(keep)
-        .filter_map(|(p, k)| k.then_some(p))
-        .collect()
-}
-
 /// The loops of `pocket` eroded by `d` > 0: outer loops counter-clockwise, loops around
 /// islands clockwise, made of exact lines and arcs. Empty when nothing of the pocket is
 /// farther than `d` from its walls and islands.
@@ -342,17 +310,17 @@ fn erode(
     }
     let elements: usize = contours.iter().map(|c| c.segments.len()).sum();
     let mut raw: Vec<Piece> = Vec::new();
-    let mut rings = Vec::with_capacity(contours.len());
     let (mut next_node, mut base) = (0, 0);
+    let wanted = |source: u32| smaller.is_none_or(|s| s.has(source));
     for c in contours {
-        let (pieces, next) = raw::raw_offset(c, d, tol, next_node, (base, elements));
-        rings.push(raw.len()..raw.len() + pieces.len());
-        raw.extend(pieces);
+        let (pieces, next) = raw::raw_offset(c, d, tol, next_node, (base, elements), &wanted);
+        if raw.is_empty() {
+            raw = pieces;
+        } else {
+            raw.extend(pieces);
+        }
         next_node = next;
         base += c.segments.len();
-    }
-    if let Some(smaller) = smaller {
-        raw = keep_sources(raw, &rings, elements, smaller);
     }
     let mut nodes = Nodes::new(next_node);
     let budget = (MAX_BOX_TESTS, MAX_CROSSINGS);
@@ -391,9 +359,12 @@ fn erode(
             ..p
         })
         .collect();
-    let is_join =
-        |p: &Piece| p.source as usize >= elements && matches!(p.segment, crate::geom::Segment::Line(_));
-    let kept = prune(pieces, profile, inside, &is_join, d, tol).map_err(|near| OffsetError::TooComplex {
+    // Joining lines: the joint at the end of element k is the source `elements + k`.
+    let join_at = |p: &Piece| {
+        let joint = (p.source as usize).checked_sub(elements)?;
+        matches!(p.segment, crate::geom::Segment::Line(_)).then_some(joint)
+    };
+    let kept = prune(pieces, profile, inside, &join_at, d, tol).map_err(|near| OffsetError::TooComplex {
         distance: d,
         what: format!(
             "judging its pieces would measure more than {} distances to the walls",

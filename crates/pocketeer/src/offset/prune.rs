@@ -65,8 +65,8 @@ impl Profile {
 /// end to start at a node no other piece touches (a run) are valid or invalid together, and one
 /// point of each run decides: the middle of its longest piece.
 ///
-/// Joining lines (`is_join`: the chords the raw offset puts where moved elements overlap or
-/// collapse) are no offset curve: their points are nearer than d to the joint, so the
+/// Joining lines (`join_at` gives the element at whose end their joint lies: the chords the
+/// raw offset puts where moved elements overlap or collapse) are no offset curve: their points are nearer than d to the joint, so the
 /// argument above does not hold along them. A join coming more than `JOIN_SLACK` inside d is
 /// a run of its own, and invalid; a shorter one stays in its run.
 ///
@@ -76,7 +76,7 @@ pub fn prune(
     pieces: Vec<Piece>,
     profile: &Profile,
     inside: &dyn Fn(Point) -> bool,
-    is_join: &dyn Fn(&Piece) -> bool,
+    join_at: &dyn Fn(&Piece) -> Option<usize>,
     d: f64,
     tol: &Tolerance,
 ) -> Result<Vec<Piece>, Point> {
@@ -88,9 +88,17 @@ pub fn prune(
     // A join whose middle is within JOIN_SLACK of the distance (a chord a few micrometres
     // long where two moved elements almost meet) closes its loop as the elements would;
     // any other join is judged alone, and is invalid.
+    // The joint's own element is the first to try: it is usually the one that comes nearer.
+    let mut join_work = 0;
     let joins: Vec<bool> = pieces
         .iter()
-        .map(|p| is_join(p) && profile.nearer_than(p.segment.point_at(0.5), d - JOIN_SLACK.min(0.5 * d)))
+        .map(|p| {
+            join_at(p).is_some_and(|element| {
+                let mid = p.segment.point_at(0.5);
+                let r = d - JOIN_SLACK.min(0.5 * d);
+                profile.nearer_than_after(mid, r, &mut join_work, &mut Some(element))
+            })
+        })
         .collect();
     let run = runs(&pieces, &joins);
     // The longest piece of each run (runs are numbered by one of their pieces).
@@ -152,21 +160,22 @@ fn runs(pieces: &[Piece], joins: &[bool]) -> Vec<usize> {
 /// two nodes: they bound no area (offsets of two walls exactly 2d apart coincide like this), and
 /// keeping them would make loops that run back over themselves.
 pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
-    // Pieces sorted by (start, end): the twins of a piece are the run keyed (end, start).
-    let mut order: Vec<usize> = (0..pieces.len()).collect();
-    order.sort_unstable_by_key(|&i| (pieces[i].start, pieces[i].end));
-    let key = |k: usize| (pieces[order[k]].start, pieces[order[k]].end);
+    // The twins of a piece start where it ends.
+    let (first, by_start) = pieces_by_node(&pieces, node_count(&pieces), |p| p.start);
     let mut gone = vec![false; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
         if gone[i] || p.start == p.end {
             continue;
         }
-        let first = order.partition_point(|&j| (pieces[j].start, pieces[j].end) < (p.end, p.start));
         let mid = p.segment.point_at(0.5);
-        let twin = (first..order.len())
-            .take_while(|&k| key(k) == (p.end, p.start))
-            .map(|k| order[k])
-            .find(|&j| !gone[j] && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps);
+        let twin = by_start[first[p.end]..first[p.end + 1]]
+            .iter()
+            .copied()
+            .find(|&j| {
+                pieces[j].end == p.start
+                    && !gone[j]
+                    && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps
+            });
         if let Some(j) = twin {
             gone[i] = true;
             gone[j] = true;

@@ -12,6 +12,12 @@ use std::f64::consts::PI;
 /// contour, `joints + base + k` for the joint at the end of element k (`base`: the index of
 /// the contour's first element among all elements offset together, `joints`: their count).
 ///
+/// Only the pieces `wanted` allows are returned: a moved element when its source is wanted, a
+/// joint's pieces when the joint or a moved element beside it is, so that the ring does not
+/// open where a loop may still run through it. The trimming of moved elements is worked out
+/// along the whole ring (it depends on the neighbours), so the pieces returned are exactly
+/// those of the whole ring.
+///
 /// Consecutive moved elements share a node where they meet. Where they part (a turn to the
 /// right), an arc of radius d around the joint closes the gap; where they overlap (a turn to the
 /// left) or an element collapsed, a short line joins their ends, and the split stage cuts the
@@ -23,6 +29,7 @@ pub fn raw_offset(
     tol: &Tolerance,
     mut next_node: usize,
     (base, joints): (usize, usize),
+    wanted: &dyn Fn(u32) -> bool,
 ) -> (Vec<Piece>, usize) {
     let segs = &contour.segments;
     // The moved elements that did not collapse, with the index of their original.
@@ -70,38 +77,47 @@ pub fn raw_offset(
     // Node at the start of moved element i is first + i; its end is the next one's start, with
     // a joining piece between them where they do not meet.
     let mut pieces = Vec::with_capacity(2 * n);
+    let element_wanted = |i: usize| wanted((base + moved[i].0) as u32);
     for i in 0..n {
         let (k, a) = moved[i];
         let (j, b) = moved[(i + 1) % n];
+        let (want_element, want_joint) = {
+            let own = element_wanted(i);
+            let joint = own || element_wanted((i + 1) % n) || wanted((joints + base + k) as u32);
+            (own, joint)
+        };
+        if !want_element && !want_joint {
+            continue;
+        }
         let a = if from[i] > 0.0 || to[i] < 1.0 {
             a.sub(from[i], to[i])
         } else {
             a
         };
+        let start = first + i;
+        let next_start = first + (i + 1) % n;
+        let end = if meets[i] {
+            next_start
+        } else {
+            next_node += 1;
+            next_node - 1
+        };
+        if want_element {
+            pieces.push(Piece {
+                segment: a,
+                start,
+                end,
+                source: (base + k) as u32,
+            });
+        }
+        if meets[i] || !want_joint {
+            continue;
+        }
         let b_start = if from[(i + 1) % n] > 0.0 {
             b.point_at(from[(i + 1) % n])
         } else {
             b.start()
         };
-        let start = first + i;
-        let next_start = first + (i + 1) % n;
-        if meets[i] {
-            pieces.push(Piece {
-                segment: a,
-                start,
-                end: next_start,
-                source: (base + k) as u32,
-            });
-            continue;
-        }
-        let end = next_node;
-        next_node += 1;
-        pieces.push(Piece {
-            segment: a,
-            start,
-            end,
-            source: (base + k) as u32,
-        });
         let adjacent = (k + 1) % segs.len() == j;
         let turns_right = adjacent && right_turn(&segs[k], &segs[j], d);
         // A needle tip whose moved sides do not cross: see `tip_arc`.
@@ -281,7 +297,7 @@ mod tests {
                 .map(|k| Segment::Line(Line::new(c[k], c[(k + 1) % 4])))
                 .collect(),
         );
-        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, (0, 4));
+        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, (0, 4), &|_| true);
         assert_eq!(pieces.len(), 8);
         assert_eq!(next, 8);
         assert!(pieces
