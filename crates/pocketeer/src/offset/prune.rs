@@ -85,22 +85,28 @@ pub fn prune(
         .into_iter()
         .filter(|p| p.segment.length() > tol.eps)
         .collect();
+    let degree = Degrees::of(&pieces);
     // A join whose middle is within JOIN_SLACK of the distance (a chord a few micrometres
     // long where two moved elements almost meet) closes its loop as the elements would;
-    // any other join is judged alone, and is invalid.
-    // The joint's own element is the first to try: it is usually the one that comes nearer.
-    let mut join_work = 0;
+    // any other join is judged alone, and is invalid. A join between two nodes where runs
+    // end is judged alone anyway, by its middle against a radius nearer d: it needs no test
+    // of its own (near the centre of a curvature of radius about d, where most pieces are
+    // such joins, that test would measure most of the profile). The joint's own element is
+    // the first to try: it is usually the one that comes nearer.
+    let mut work = 0; // element distances measured, for joins and runs together
     let joins: Vec<bool> = pieces
         .iter()
         .map(|p| {
-            join_at(p).is_some_and(|element| {
-                let mid = p.segment.point_at(0.5);
-                let r = d - JOIN_SLACK.min(0.5 * d);
-                profile.nearer_than_after(mid, r, &mut join_work, &mut Some(element))
-            })
+            let alone = !degree.simple(p.start) && !degree.simple(p.end);
+            !alone
+                && join_at(p).is_some_and(|element| {
+                    let mid = p.segment.point_at(0.5);
+                    let r = d - JOIN_SLACK.min(0.5 * d);
+                    profile.nearer_than_after(mid, r, &mut work, &mut Some(element))
+                })
         })
         .collect();
-    let run = runs(&pieces, &joins);
+    let run = runs(&pieces, &joins, &degree);
     // The longest piece of each run (runs are numbered by one of their pieces).
     let mut longest: Vec<usize> = vec![usize::MAX; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
@@ -109,7 +115,6 @@ pub fn prune(
             *best = i;
         }
     }
-    let mut work = 0;
     let mut last = None;
     let mut valid = vec![false; longest.len()];
     for (v, &i) in valid.iter_mut().zip(&longest) {
@@ -135,22 +140,49 @@ fn node_count(pieces: &[Piece]) -> usize {
     pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0)
 }
 
-/// The run each piece belongs to: pieces are joined through nodes where exactly one piece
-/// ends and exactly one starts.
-fn runs(pieces: &[Piece], joins: &[bool]) -> Vec<usize> {
-    let nodes = node_count(pieces);
-    let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
-    let (mut into, mut from) = (vec![usize::MAX; nodes], vec![usize::MAX; nodes]);
-    for (i, p) in pieces.iter().enumerate() {
-        outs[p.start] += 1;
-        from[p.start] = i;
-        ins[p.end] += 1;
-        into[p.end] = i;
+/// How many pieces start and end at each node.
+struct Degrees {
+    ins: Vec<u32>,
+    outs: Vec<u32>,
+    /// For each node, a piece ending there and one starting there.
+    into: Vec<usize>,
+    from: Vec<usize>,
+}
+
+impl Degrees {
+    fn of(pieces: &[Piece]) -> Degrees {
+        let nodes = node_count(pieces);
+        let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
+        let (mut into, mut from) = (vec![usize::MAX; nodes], vec![usize::MAX; nodes]);
+        for (i, p) in pieces.iter().enumerate() {
+            outs[p.start] += 1;
+            from[p.start] = i;
+            ins[p.end] += 1;
+            into[p.end] = i;
+        }
+        Degrees {
+            ins,
+            outs,
+            into,
+            from,
+        }
     }
+
+    /// True at a node where exactly one piece ends and exactly one starts: a run goes on
+    /// through it.
+    fn simple(&self, node: usize) -> bool {
+        self.ins[node] == 1 && self.outs[node] == 1
+    }
+}
+
+/// The run each piece belongs to: pieces are joined through simple nodes (see
+/// [`Degrees::simple`]) unless one of them is a join judged alone.
+fn runs(pieces: &[Piece], joins: &[bool], degree: &Degrees) -> Vec<usize> {
     let mut sets = UnionFind::new(pieces.len());
-    for node in 0..nodes {
-        if ins[node] == 1 && outs[node] == 1 && !joins[into[node]] && !joins[from[node]] {
-            sets.union(into[node], from[node]);
+    for node in 0..degree.ins.len() {
+        let (a, b) = (degree.into[node], degree.from[node]);
+        if degree.simple(node) && !joins[a] && !joins[b] {
+            sets.union(a, b);
         }
     }
     (0..pieces.len()).map(|i| sets.find(i)).collect()
