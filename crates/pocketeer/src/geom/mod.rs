@@ -24,6 +24,6 @@ pub use line::Line;
 pub use packed::{PackedTree, Search};
 pub use point::{Point, Vector};
 pub use segment::Segment;
-pub(crate) use stitch::pieces_by_node;
 pub use stitch::{cluster_points, stitch, Piece};
+pub(crate) use stitch::{stitch_kept, PieceGraph};
 pub use tolerance::{Tolerance, DEFAULT_JOIN_TOLERANCE};

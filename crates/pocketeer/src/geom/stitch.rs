@@ -37,28 +37,31 @@ pub struct Piece {
 /// assert!((loops[0].signed_area() - 1.0).abs() < 1e-12);
 /// ```
 pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
-    // Node ids are small integers (indices of some list): a vector indexed by them.
-    let nodes = pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0);
-    // The pieces leaving each node: `by_start[first[n]..first[n + 1]]`.
-    let (first, by_start) = pieces_by_node(pieces, nodes, |p| p.start);
-    let mut used = vec![false; pieces.len()];
+    stitch_kept(pieces, &PieceGraph::new(pieces), &vec![true; pieces.len()])
+}
+
+/// [`stitch`] over the pieces `kept` marks, with their graph already built.
+pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -> (Vec<Contour>, usize) {
+    let mut used: Vec<bool> = kept.iter().map(|k| !k).collect();
     let mut loops = Vec::new();
     let mut lost = 0;
+    let mut chain = Vec::new();
     for start in 0..pieces.len() {
         if used[start] {
             continue;
         }
         used[start] = true;
-        let mut chain = vec![start];
+        chain.clear();
+        chain.push(start);
         loop {
             let last = &pieces[chain[chain.len() - 1]];
-            let incoming = last.segment.tangent_at(1.0);
-            let options = &by_start[first[last.end]..first[last.end + 1]];
+            let options = graph.leaving(last.end);
             // The first piece is a candidate too: taking it closes the loop.
             let mut open = options.iter().copied().filter(|&i| !used[i] || i == start);
             let next = if options.len() == 1 {
                 open.next()
             } else {
+                let incoming = last.segment.tangent_at(1.0);
                 open.max_by(|&a, &b| {
                     turn_key(incoming, &pieces[a].segment)
                         .partial_cmp(&turn_key(incoming, &pieces[b].segment))
@@ -84,14 +87,51 @@ pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
     (loops, lost)
 }
 
-/// The pieces grouped by a node of theirs (`node_of`), as offsets into one array:
-/// `list[first[n]..first[n + 1]]` holds the pieces at node `n`. One array, not a list per
-/// node: node ids may run far beyond the number of pieces.
-pub(crate) fn pieces_by_node(
-    pieces: &[Piece],
-    nodes: usize,
-    node_of: impl Fn(&Piece) -> usize,
-) -> (Vec<usize>, Vec<usize>) {
+/// The pieces leaving and entering each node. Node ids are small integers (indices of some
+/// list), so both are kept as offsets into one array each, not as a list per node: node ids
+/// may run far beyond the number of pieces.
+pub(crate) struct PieceGraph {
+    /// `leaving[first_leaving[n]..first_leaving[n + 1]]`: the pieces starting at node n.
+    first_leaving: Vec<usize>,
+    leaving: Vec<usize>,
+    /// Likewise for the pieces ending at node n.
+    first_entering: Vec<usize>,
+    entering: Vec<usize>,
+}
+
+impl PieceGraph {
+    /// The graph of `pieces`, in their order at every node.
+    pub(crate) fn new(pieces: &[Piece]) -> PieceGraph {
+        let nodes = pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0);
+        let (first_leaving, leaving) = by_node(pieces, nodes, |p| p.start);
+        let (first_entering, entering) = by_node(pieces, nodes, |p| p.end);
+        PieceGraph {
+            first_leaving,
+            leaving,
+            first_entering,
+            entering,
+        }
+    }
+
+    /// One more than the largest node id.
+    pub(crate) fn nodes(&self) -> usize {
+        self.first_leaving.len() - 1
+    }
+
+    /// The pieces starting at `node`.
+    pub(crate) fn leaving(&self, node: usize) -> &[usize] {
+        &self.leaving[self.first_leaving[node]..self.first_leaving[node + 1]]
+    }
+
+    /// The pieces ending at `node`.
+    pub(crate) fn entering(&self, node: usize) -> &[usize] {
+        &self.entering[self.first_entering[node]..self.first_entering[node + 1]]
+    }
+}
+
+/// The pieces grouped by a node of theirs (`node_of`): `list[first[n]..first[n + 1]]` holds
+/// the pieces at node `n`.
+fn by_node(pieces: &[Piece], nodes: usize, node_of: impl Fn(&Piece) -> usize) -> (Vec<usize>, Vec<usize>) {
     let mut first = vec![0usize; nodes + 1];
     for p in pieces {
         first[node_of(p) + 1] += 1;

@@ -16,7 +16,7 @@ mod split;
 
 pub(crate) use levels::offsets_until_empty;
 
-use crate::geom::{stitch, Contour, Piece, Point, Tolerance, WindingIndex};
+use crate::geom::{stitch_kept, Contour, Piece, PieceGraph, Point, Tolerance, WindingIndex};
 use crate::import::Pocket;
 use prune::{cancel_opposites, prune, remove_dangling, Profile};
 use split::{split, Nodes};
@@ -351,35 +351,41 @@ fn erode(
             split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
     };
+    // Canonical node ids; pieces shorter than rounding go (their ends are one node).
     let pieces: Vec<Piece> = pieces
         .into_iter()
+        .filter(|p| p.segment.length() > tol.eps)
         .map(|p| Piece {
             start: nodes.find(p.start),
             end: nodes.find(p.end),
             ..p
         })
         .collect();
+    let graph = PieceGraph::new(&pieces);
     // Joining lines: the joint at the end of element k is the source `elements + k`.
     let join_at = |p: &Piece| {
         let joint = (p.source as usize).checked_sub(elements)?;
         matches!(p.segment, crate::geom::Segment::Line(_)).then_some(joint)
     };
-    let kept = prune(pieces, profile, inside, &join_at, d, tol).map_err(|near| OffsetError::TooComplex {
-        distance: d,
-        what: format!(
-            "judging its pieces would measure more than {} distances to the walls",
-            prune::MAX_MEASURES
-        ),
-        near,
+    let mut kept = prune(&pieces, &graph, profile, inside, &join_at, d, tol).map_err(|near| {
+        OffsetError::TooComplex {
+            distance: d,
+            what: format!(
+                "judging its pieces would measure more than {} distances to the walls",
+                prune::MAX_MEASURES
+            ),
+            near,
+        }
     })?;
-    let kept = remove_dangling(cancel_opposites(kept, tol));
+    cancel_opposites(&pieces, &graph, &mut kept, tol);
+    remove_dangling(&pieces, &graph, &mut kept);
     let mut used = vec![false; 2 * elements];
-    for p in &kept {
+    for (p, _) in pieces.iter().zip(&kept).filter(|(_, &k)| k) {
         if let Some(u) = used.get_mut(p.source as usize) {
             *u = true;
         }
     }
-    let (loops, _lost) = stitch(&kept);
+    let (loops, _lost) = stitch_kept(&pieces, &graph, &kept);
     let loops = loops
         .into_iter()
         // A loop whose mean width (twice its area over its length) is within the distance

@@ -1,7 +1,7 @@
 //! Throwing away invalid pieces (paper §6): a piece is kept only when it is nowhere closer than
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
-use crate::geom::pieces_by_node;
+use crate::geom::PieceGraph;
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
 use crate::union_find::UnionFind;
 
@@ -70,22 +70,20 @@ impl Profile {
 /// argument above does not hold along them. A join coming more than `JOIN_SLACK` inside d is
 /// a run of its own, and invalid; a shorter one stays in its run.
 ///
-/// `Err` with the point being judged when that would measure more than [`MAX_MEASURES`]
-/// element distances.
+/// Returns which pieces are kept; `Err` with the point being judged when that would measure
+/// more than [`MAX_MEASURES`] element distances.
 pub fn prune(
-    pieces: Vec<Piece>,
+    pieces: &[Piece],
+    graph: &PieceGraph,
     profile: &Profile,
     inside: &dyn Fn(Point) -> bool,
     join_at: &dyn Fn(&Piece) -> Option<usize>,
     d: f64,
     tol: &Tolerance,
-) -> Result<Vec<Piece>, Point> {
+) -> Result<Vec<bool>, Point> {
     let slack = slack(d, tol);
-    let pieces: Vec<Piece> = pieces
-        .into_iter()
-        .filter(|p| p.segment.length() > tol.eps)
-        .collect();
-    let degree = Degrees::of(&pieces);
+    // A run goes on through a node where exactly one piece ends and exactly one starts.
+    let simple = |node: usize| graph.leaving(node).len() == 1 && graph.entering(node).len() == 1;
     // A join whose middle is within JOIN_SLACK of the distance (a chord a few micrometres
     // long where two moved elements almost meet) closes its loop as the elements would;
     // any other join is judged alone, and is invalid. A join between two nodes where runs
@@ -97,7 +95,7 @@ pub fn prune(
     let joins: Vec<bool> = pieces
         .iter()
         .map(|p| {
-            let alone = !degree.simple(p.start) && !degree.simple(p.end);
+            let alone = !simple(p.start) && !simple(p.end);
             !alone
                 && join_at(p).is_some_and(|element| {
                     let mid = p.segment.point_at(0.5);
@@ -106,7 +104,18 @@ pub fn prune(
                 })
         })
         .collect();
-    let run = runs(&pieces, &joins, &degree);
+    // The run each piece belongs to: pieces are joined through simple nodes unless one of
+    // them is a join judged alone.
+    let mut sets = UnionFind::new(pieces.len());
+    for node in 0..graph.nodes() {
+        if simple(node) {
+            let (a, b) = (graph.entering(node)[0], graph.leaving(node)[0]);
+            if !joins[a] && !joins[b] {
+                sets.union(a, b);
+            }
+        }
+    }
+    let run: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
     // The longest piece of each run (runs are numbered by one of their pieces).
     let mut longest: Vec<usize> = vec![usize::MAX; pieces.len()];
     for (i, p) in pieces.iter().enumerate() {
@@ -127,136 +136,53 @@ pub fn prune(
             return Err(m);
         }
     }
-    Ok(pieces
-        .into_iter()
-        .enumerate()
-        .filter(|(i, _)| valid[run[*i]])
-        .map(|(_, p)| p)
-        .collect())
+    Ok(run.iter().map(|&r| valid[r]).collect())
 }
 
-/// One more than the largest node id.
-fn node_count(pieces: &[Piece]) -> usize {
-    pieces.iter().map(|p| p.start.max(p.end) + 1).max().unwrap_or(0)
-}
-
-/// How many pieces start and end at each node.
-struct Degrees {
-    ins: Vec<u32>,
-    outs: Vec<u32>,
-    /// For each node, a piece ending there and one starting there.
-    into: Vec<usize>,
-    from: Vec<usize>,
-}
-
-impl Degrees {
-    fn of(pieces: &[Piece]) -> Degrees {
-        let nodes = node_count(pieces);
-        let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
-        let (mut into, mut from) = (vec![usize::MAX; nodes], vec![usize::MAX; nodes]);
-        for (i, p) in pieces.iter().enumerate() {
-            outs[p.start] += 1;
-            from[p.start] = i;
-            ins[p.end] += 1;
-            into[p.end] = i;
-        }
-        Degrees {
-            ins,
-            outs,
-            into,
-            from,
-        }
-    }
-
-    /// True at a node where exactly one piece ends and exactly one starts: a run goes on
-    /// through it.
-    fn simple(&self, node: usize) -> bool {
-        self.ins[node] == 1 && self.outs[node] == 1
-    }
-}
-
-/// The run each piece belongs to: pieces are joined through simple nodes (see
-/// [`Degrees::simple`]) unless one of them is a join judged alone.
-fn runs(pieces: &[Piece], joins: &[bool], degree: &Degrees) -> Vec<usize> {
-    let mut sets = UnionFind::new(pieces.len());
-    for node in 0..degree.ins.len() {
-        let (a, b) = (degree.into[node], degree.from[node]);
-        if degree.simple(node) && !joins[a] && !joins[b] {
-            sets.union(a, b);
-        }
-    }
-    (0..pieces.len()).map(|i| sets.find(i)).collect()
-}
-
-/// Removes pairs of pieces that run along each other in opposite directions between the same
-/// two nodes: they bound no area (offsets of two walls exactly 2d apart coincide like this), and
-/// keeping them would make loops that run back over themselves.
-pub fn cancel_opposites(pieces: Vec<Piece>, tol: &Tolerance) -> Vec<Piece> {
-    // The twins of a piece start where it ends.
-    let (first, by_start) = pieces_by_node(&pieces, node_count(&pieces), |p| p.start);
-    let mut gone = vec![false; pieces.len()];
+/// Drops (from `kept`) pairs of pieces that run along each other in opposite directions
+/// between the same two nodes: they bound no area (offsets of two walls exactly 2d apart
+/// coincide like this), and keeping them would make loops that run back over themselves.
+pub fn cancel_opposites(pieces: &[Piece], graph: &PieceGraph, kept: &mut [bool], tol: &Tolerance) {
     for (i, p) in pieces.iter().enumerate() {
-        if gone[i] || p.start == p.end {
+        if !kept[i] || p.start == p.end {
             continue;
         }
-        let mid = p.segment.point_at(0.5);
-        let twin = by_start[first[p.end]..first[p.end + 1]]
-            .iter()
-            .copied()
-            .find(|&j| {
-                pieces[j].end == p.start
-                    && !gone[j]
-                    && pieces[j].segment.point_at(0.5).distance(mid) <= 1e3 * tol.eps
-            });
+        // The twins of a piece start where it ends.
+        let twin = graph.leaving(p.end).iter().copied().find(|&j| {
+            pieces[j].end == p.start
+                && kept[j]
+                && pieces[j].segment.point_at(0.5).distance(p.segment.point_at(0.5)) <= 1e3 * tol.eps
+        });
         if let Some(j) = twin {
-            gone[i] = true;
-            gone[j] = true;
+            kept[i] = false;
+            kept[j] = false;
         }
     }
-    pieces
-        .into_iter()
-        .zip(gone)
-        .filter_map(|(p, g)| (!g).then_some(p))
-        .collect()
 }
 
-/// Removes pieces that cannot be part of a closed loop: those starting at a node no kept piece
-/// ends at, or ending where no kept piece starts. Such stubs are left where an invalid piece
-/// came within rounding of being valid; a true offset is made of closed loops only.
-pub fn remove_dangling(pieces: Vec<Piece>) -> Vec<Piece> {
-    let nodes = node_count(&pieces);
-    let (mut ins, mut outs) = (vec![0u32; nodes], vec![0u32; nodes]);
-    for p in &pieces {
-        outs[p.start] += 1;
-        ins[p.end] += 1;
-    }
-    let (start_first, by_start) = pieces_by_node(&pieces, nodes, |p| p.start);
-    let (end_first, by_end) = pieces_by_node(&pieces, nodes, |p| p.end);
-    let mut alive = vec![true; pieces.len()];
-    let dangling = |p: &Piece, ins: &[u32], outs: &[u32]| ins[p.start] == 0 || outs[p.end] == 0;
+/// Drops (from `kept`) the pieces that cannot be part of a closed loop: those starting at a
+/// node no kept piece ends at, or ending where no kept piece starts. Such stubs are left where
+/// an invalid piece came within rounding of being valid; a true offset is made of closed
+/// loops only.
+pub fn remove_dangling(pieces: &[Piece], graph: &PieceGraph, kept: &mut [bool]) {
+    let count = |list: &[usize], kept: &[bool]| list.iter().filter(|&&j| kept[j]).count();
+    let dangling = |p: &Piece, kept: &[bool]| {
+        count(graph.entering(p.start), kept) == 0 || count(graph.leaving(p.end), kept) == 0
+    };
     let mut queue: Vec<usize> = (0..pieces.len())
-        .filter(|&i| dangling(&pieces[i], &ins, &outs))
+        .filter(|&i| kept[i] && dangling(&pieces[i], kept))
         .collect();
     while let Some(i) = queue.pop() {
-        if !alive[i] {
+        if !kept[i] {
             continue;
         }
-        alive[i] = false;
+        kept[i] = false;
         let p = &pieces[i];
-        outs[p.start] -= 1;
-        ins[p.end] -= 1;
         // Removing it may strand the pieces that led into its start or left from its end.
-        let into_start = &by_end[end_first[p.start]..end_first[p.start + 1]];
-        let from_end = &by_start[start_first[p.end]..start_first[p.end + 1]];
-        for &j in into_start.iter().chain(from_end) {
-            if alive[j] && dangling(&pieces[j], &ins, &outs) {
+        for &j in graph.entering(p.start).iter().chain(graph.leaving(p.end)) {
+            if kept[j] && dangling(&pieces[j], kept) {
                 queue.push(j);
             }
         }
     }
-    pieces
-        .into_iter()
-        .zip(alive)
-        .filter_map(|(p, a)| a.then_some(p))
-        .collect()
 }
