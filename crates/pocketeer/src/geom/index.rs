@@ -116,25 +116,25 @@ pub fn for_each_overlapping_pair(
             [b.min.y, b.max.y, b.min.x, b.max.x]
         }
     };
-    let spans: Vec<[f64; 4]> = boxes.iter().map(axes).collect();
-    let mut order: Vec<usize> = (0..boxes.len()).collect();
-    order.sort_unstable_by(|&a, &b| spans[a][0].total_cmp(&spans[b][0]));
+    // The boxes in sweep order, each with its index: the sweep then reads memory in order.
+    let mut sorted: Vec<([f64; 4], usize)> = boxes.iter().map(axes).zip(0..).collect();
+    sorted.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    // Positions in `sorted` of the boxes the sweep line is in.
     let mut open: Vec<usize> = Vec::new();
     let mut tests: u64 = 0;
-    for &i in &order {
-        let b = spans[i];
+    for (k, &(b, i)) in sorted.iter().enumerate() {
         tests += open.len() as u64;
         if tests > budget {
             return Err((tests, i));
         }
-        open.retain(|&j| spans[j][1] >= b[0]);
-        for &j in &open {
-            let o = spans[j];
+        open.retain(|&o| sorted[o].0[1] >= b[0]);
+        for &o in &open {
+            let (o, j) = sorted[o];
             if o[2] <= b[3] && b[2] <= o[3] && !f(i.min(j), i.max(j)) {
                 return Err((tests, i));
             }
         }
-        open.push(i);
+        open.push(k);
     }
     Ok(())
 }
