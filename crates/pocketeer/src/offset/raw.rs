@@ -15,8 +15,8 @@ use std::f64::consts::PI;
 /// Only the pieces `wanted` allows are returned: a moved element when its source is wanted, a
 /// joint's pieces when the joint or a moved element beside it is, so that the ring does not
 /// open where a loop may still run through it. The trimming of moved elements is worked out
-/// along the whole ring (it depends on the neighbours), so the pieces returned are exactly
-/// those of the whole ring.
+/// along the whole ring (it depends on the neighbours), so the pieces returned are those of
+/// the whole ring (only the node ids of the ends differ).
 ///
 /// Consecutive moved elements share a node where they meet. Where they part (a turn to the
 /// right), an arc of radius d around the joint closes the gap; where they overlap (a turn to the
@@ -317,6 +317,34 @@ mod tests {
         let s0 = &contour.segments[0];
         let left = s0.start() + s0.tangent_at(0.0).perp() * 2.0;
         assert!(left.distance(pieces[0].segment.start()) < 1e-12);
+    }
+
+    #[test]
+    fn only_the_wanted_pieces_and_the_joints_beside_them_are_returned() {
+        let p = Point::new;
+        let c = [p(0.0, 0.0), p(0.0, 10.0), p(10.0, 10.0), p(10.0, 0.0)];
+        let contour = Contour::new(
+            (0..4)
+                .map(|k| Segment::Line(Line::new(c[k], c[(k + 1) % 4])))
+                .collect(),
+        );
+        let tol = Tolerance::default();
+        let (all, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|_| true);
+        // Element 2 (source 2): its moved edge and the corner arcs at either end of it (the
+        // joints at the ends of elements 1 and 2, sources 4 + 1 and 4 + 2), as in the whole
+        // ring, joined end to start.
+        let (some, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|s| s == 2);
+        let sources: Vec<u32> = some.iter().map(|p| p.source).collect();
+        assert_eq!(sources, vec![5, 2, 6]);
+        for piece in &some {
+            let twin = all.iter().find(|q| q.source == piece.source).unwrap();
+            assert_eq!(piece.segment, twin.segment);
+        }
+        assert_eq!((some[0].end, some[1].end), (some[1].start, some[2].start));
+        // A joint alone brings only itself.
+        let (joint, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|s| s == 7);
+        assert_eq!(joint.len(), 1);
+        assert_eq!(joint[0].source, 7);
     }
 
     #[test]
