@@ -458,3 +458,27 @@ fn a_left_turn_out_of_an_arc_of_radius_d() {
         155,
     );
 }
+
+/// Found by the ninth run (with five more of the class above, all at d = 0.01): an arc of
+/// radius 0.010016 (d + 1.6e-5) offsets to an arc of radius 1.6e-5 round its centre, 2.3e-5
+/// long, and the elements on either side pass within 6.8e-6 mm inside d of its middle without
+/// crossing it at any angle the split can resolve (all these curves are tangent there to
+/// within rounding). The documented exception to the 1e-6 mm accuracy (`offset` module docs):
+/// pieces a few hundredths of a micrometre long where an element offsets to almost a point.
+#[test]
+#[ignore = "known: a piece 2.3e-5 mm long, 6.8e-6 mm inside d, where an arc of radius d + 1.6e-5 offsets to almost a point (documented exception, within 1e-5 mm)"]
+fn an_arc_a_hair_wider_than_d_offsets_to_almost_a_point() {
+    case(
+        &[
+            (-1, 32634, -128),
+            (24705, -32257, 0),
+            (-32383, -32387, -121),
+            (-32383, -32385, -7),
+            (-32639, -32383, -127),
+            (-1663, -1, 4),
+            (0, 0, 0),
+        ],
+        &[],
+        0,
+    );
+}
