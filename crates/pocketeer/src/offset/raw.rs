@@ -46,15 +46,23 @@ pub fn raw_offset(
     // nearest the joint (so they meet in one node), as long as each keeps some length.
     let mut from = vec![0.0; n];
     let mut to = vec![1.0; n];
-    let mut meets = vec![false; n];
+    // How moved element i and the next one come together.
+    let mut joint = vec![Joint::Apart; n];
     for i in 0..n {
         let (k, a) = moved[i];
         let (j, b) = moved[(i + 1) % n];
         if a.end().distance(b.start()) <= 10.0 * tol.eps {
-            meets[i] = true;
+            joint[i] = Joint::Meet;
             continue;
         }
-        if (k + 1) % segs.len() != j || right_turn(&segs[k], &segs[j], d) || n < 2 {
+        if (k + 1) % segs.len() != j {
+            continue;
+        }
+        if right_turn(&segs[k], &segs[j], d) {
+            joint[i] = Joint::RightTurn;
+            continue;
+        }
+        if n < 2 {
             continue;
         }
         let corner = segs[k].end();
@@ -69,7 +77,7 @@ pub fn raw_offset(
         if let Some((_, ta, tb)) = crossing {
             to[i] = ta;
             from[(i + 1) % n] = tb;
-            meets[i] = true;
+            joint[i] = Joint::Meet;
         }
     }
     let first = next_node;
@@ -96,7 +104,8 @@ pub fn raw_offset(
         };
         let start = first + i;
         let next_start = first + (i + 1) % n;
-        let end = if meets[i] {
+        let meets = joint[i] == Joint::Meet;
+        let end = if meets {
             next_start
         } else {
             next_node += 1;
@@ -110,7 +119,7 @@ pub fn raw_offset(
                 source: (base + k) as u32,
             });
         }
-        if meets[i] || !want_joint {
+        if meets || !want_joint {
             continue;
         }
         let b_start = if from[(i + 1) % n] > 0.0 {
@@ -119,7 +128,7 @@ pub fn raw_offset(
             b.start()
         };
         let adjacent = (k + 1) % segs.len() == j;
-        let turns_right = adjacent && right_turn(&segs[k], &segs[j], d);
+        let turns_right = joint[i] == Joint::RightTurn;
         // A needle tip whose moved sides do not cross: see `tip_arc`.
         if adjacent && !turns_right && near_reversal(&segs[k], &segs[j]) {
             let (arc, whole) = tip_arc(segs[k].end(), d, a.end(), b_start);
@@ -166,6 +175,17 @@ pub fn raw_offset(
     (pieces, next_node)
 }
 
+/// How two moved elements, consecutive in the ring, come together at the joint between them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Joint {
+    /// They meet (end to start, or trimmed to their crossing).
+    Meet,
+    /// They part at a right turn of the contour: a node arc closes the gap.
+    RightTurn,
+    /// Neither: a joining chord (or a tip's arc) closes the gap.
+    Apart,
+}
+
 /// True when the contour turns back within [`NEAR_REVERSAL`] of a full reversal at the joint
 /// from `a` into `b`.
 fn near_reversal(a: &Segment, b: &Segment) -> bool {
@@ -207,13 +227,11 @@ fn clockwise_sweep(
     from: crate::geom::Point,
     to: crate::geom::Point,
 ) -> (f64, f64) {
-    let a0 = (from - corner).angle();
-    let a1 = (to - corner).angle();
-    let mut sweep = (a1 - a0).rem_euclid(2.0 * PI);
-    if sweep > 0.0 {
-        sweep -= 2.0 * PI;
-    }
-    (a0, sweep)
+    let (u, v) = (from - corner, to - corner);
+    // The counter-clockwise angle from u to v, in (-π, π], taken clockwise.
+    let turn = u.cross(v).atan2(u.dot(v));
+    let sweep = if turn > 0.0 { turn - 2.0 * PI } else { turn };
+    (u.angle(), sweep)
 }
 
 /// True when the contour turns right from `a` into `b`, or turns straight back in a cusp that
