@@ -7,8 +7,8 @@
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
 use pocketeer::import::Pocket;
 
-/// The bulged polygon of the fuzz input, counter-clockwise (edges under 1 µm dropped).
-fn outline(vertices: &[(i16, i16, i8)]) -> Contour {
+/// The bulged polygon of the fuzz input, in its own direction (edges under 1 µm dropped).
+fn polygon(vertices: &[(i16, i16, i8)]) -> Contour {
     let pts: Vec<(Point, f64)> = vertices
         .iter()
         .map(|&(x, y, b)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), b as f64 / 128.0))
@@ -24,11 +24,36 @@ fn outline(vertices: &[(i16, i16, i8)]) -> Contour {
             })
         })
         .collect();
-    let c = Contour::new(segs);
+    Contour::new(segs)
+}
+
+/// The bulged polygon of the fuzz input, counter-clockwise.
+fn outline(vertices: &[(i16, i16, i8)]) -> Contour {
+    let c = polygon(vertices);
     if c.is_ccw() {
         c
     } else {
         c.reversed()
+    }
+}
+
+/// The outline of the one pocket the importer finds in the bulged polygon taken in its own
+/// direction, as the fuzz target takes it (the importer cuts away sliver loops).
+fn imported_as_drawn(vertices: &[(i16, i16, i8)]) -> Contour {
+    let raw = polygon(vertices);
+    let tol = Tolerance::for_extent(&raw.bbox(), 0.001);
+    let chained = pocketeer::import::ChainedContour {
+        contour: raw,
+        layer: 0,
+        elements: Vec::new(),
+    };
+    let regions = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol).unwrap();
+    assert_eq!(regions.pockets.len(), 1);
+    let boundary = regions.pockets[0].boundary.clone();
+    if boundary.is_ccw() {
+        boundary
+    } else {
+        boundary.reversed()
     }
 }
 
@@ -47,14 +72,19 @@ fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) 
         })
         .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
         .collect();
-    let pocket = Pocket { boundary, islands };
+    check(&Pocket { boundary, islands }, distance);
+}
+
+/// Offsets `pocket` by the fuzz input's distance and checks every loop; returns the loops.
+fn check(pocket: &Pocket, distance: u16) -> Vec<Contour> {
     let d = 0.01 + distance as f64 / 1000.0;
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
     let profile: Vec<Segment> = pocket
         .contours()
         .flat_map(|c| c.segments.iter().copied())
         .collect();
-    for l in pocketeer::offset::offset_pocket(&pocket, d, &tol).unwrap() {
+    let loops = pocketeer::offset::offset_pocket(pocket, d, &tol).unwrap();
+    for l in &loops {
         let m = l.segments.len();
         for k in 0..m {
             let (a, b) = (l.segments[k], l.segments[(k + 1) % m]);
@@ -67,6 +97,7 @@ fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) 
             assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "{p:?} at {dist}, not {d}");
         }
     }
+    loops
 }
 
 #[test]
@@ -481,4 +512,41 @@ fn an_arc_a_hair_wider_than_d_offsets_to_almost_a_point() {
         &[],
         0,
     );
+}
+
+/// Found by the ninth run: two circles (radius 115.3 and 48.5) drawn as four semicircles that
+/// touch at a neck 0.01 mm wide. The importer cuts the crossing of the big circle's two
+/// halves at its top and leaves there a line 1e-10 mm long pointing back against them. Moved
+/// to its left (out of the pocket) it put a node arc of radius d round each of its ends, and
+/// these semicircles outside the pocket, chained to the valid moved arcs without a crossing,
+/// were kept: points 2.05 mm from the walls at d = 21.855. Lines shorter than rounding are now
+/// points to the raw offset, their neighbours meeting across them.
+#[test]
+fn a_line_shorter_than_rounding_pointing_back_is_a_point() {
+    let v = [
+        (21846, 16469, 0),
+        (21845, 16469, -128),
+        (21846, -6592, -128),
+        (21846, -16299, -128),
+        (21845, -6593, -128),
+    ];
+    let boundary = imported_as_drawn(&v);
+    let shortest = boundary
+        .segments
+        .iter()
+        .map(Segment::length)
+        .fold(f64::INFINITY, f64::min);
+    assert!(shortest < 1e-9, "the importer's output changed: {shortest}");
+    let loops = check(
+        &Pocket {
+            boundary,
+            islands: vec![],
+        },
+        21845,
+    );
+    // One loop in each circle: radius 115.31 - 21.855 and 48.53 - 21.855.
+    assert_eq!(loops.len(), 2);
+    let area: f64 = loops.iter().map(Contour::signed_area).sum();
+    let expected = std::f64::consts::PI * ((115.31f64 - 21.855).powi(2) + (48.53f64 - 21.855).powi(2));
+    assert!((area - expected).abs() < 2.0, "{area} against {expected}");
 }

@@ -365,7 +365,9 @@ fn erode(
         })
         .collect();
     let graph = PieceGraph::new(&pieces);
-    // Joining lines: the joint at the end of element k is the source `elements + k`.
+    // Joining lines: the joint at the end of element k is the source `elements + k`. (When
+    // growing a region the contours are the profile's reversed, so the element this names is
+    // not the profile's element k: a hint that misses, and costs one measure.)
     let join_at = |p: &Piece| {
         let joint = (p.source as usize).checked_sub(elements)?;
         matches!(p.segment, crate::geom::Segment::Line(_)).then_some(joint)

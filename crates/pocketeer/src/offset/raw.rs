@@ -42,6 +42,10 @@ pub fn raw_offset(
     if n == 0 {
         return (Vec::new(), next_node);
     }
+    // Consecutive moved elements k and j follow each other in the contour, across the points
+    // dropped between them if any; a joint needs two of them (a lone element among points
+    // closes on itself, j = k, unless it is the whole contour, a circle).
+    let adjacent = |k: usize, j: usize| k != j || segs.len() == 1;
     // Where the moved elements overlap at a turn to the left, trim both to their crossing
     // nearest the joint (so they meet in one node), as long as each keeps some length.
     let mut from = vec![0.0; n];
@@ -55,7 +59,7 @@ pub fn raw_offset(
             joint[i] = Joint::Meet;
             continue;
         }
-        if (k + 1) % segs.len() != j {
+        if !adjacent(k, j) {
             continue;
         }
         if right_turn(&segs[k], &segs[j], d) {
@@ -127,7 +131,7 @@ pub fn raw_offset(
         } else {
             b.start()
         };
-        let adjacent = (k + 1) % segs.len() == j;
+        let adjacent = adjacent(k, j);
         let turns_right = joint[i] == Joint::RightTurn;
         // A needle tip whose moved sides do not cross: see `tip_arc`.
         if adjacent && !turns_right && near_reversal(&segs[k], &segs[j]) {
@@ -274,10 +278,16 @@ fn curvature(s: &Segment) -> f64 {
 }
 
 /// One element moved by `d` to its left: an arc offset onto its centre becomes that point (a
-/// line of no length); `None` for a line of no length.
+/// line of no length); `None` for a line shorter than rounding, a point whose direction means
+/// nothing (the side it would move to is a guess: a line 1e-10 mm long pointing back against
+/// its neighbours would put a node arc round each of its ends, outside the pocket), so that
+/// its neighbours meet across it.
 fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
     match s {
         Segment::Line(l) => {
+            if l.length() <= 10.0 * tol.eps {
+                return None;
+            }
             let n = l.direction()?.perp() * d;
             Some(Segment::Line(Line::new(l.start + n, l.end + n)))
         }
