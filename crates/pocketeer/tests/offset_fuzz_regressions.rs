@@ -550,3 +550,60 @@ fn a_line_shorter_than_rounding_pointing_back_is_a_point() {
     let expected = std::f64::consts::PI * ((115.31f64 - 21.855).powi(2) + (48.53f64 - 21.855).powi(2));
     assert!((area - expected).abs() < 2.0, "{area} against {expected}");
 }
+
+/// Found by the ninth run: at d = 1.237 a node arc of radius d round the end of a run of
+/// arcs 0.005 to 0.007 mm in radius (a wiggle 0.02 mm across at a corner) comes 9.6e-6 mm
+/// inside d of one of them: its offset, a circle of radius d + 0.005 round a centre 0.005
+/// from the joint, touches the node arc internally, tangent to within rounding, so the split
+/// finds no crossing to cut it at. Within the 1e-5 mm of the documented exceptions (`offset`
+/// module docs), not within 1e-6.
+#[test]
+#[ignore = "known: a node arc 9.6e-6 mm inside d where the offset of an arc 0.005 mm in radius touches it tangentially (documented exception, within 1e-5 mm)"]
+fn a_node_arc_touched_inside_by_the_offset_of_a_wiggle() {
+    let v = [
+        (21933, 21846, 86),
+        (21781, 21845, 85),
+        (20584, 21845, 85),
+        (20565, 21846, 0),
+        (20817, 20849, 81),
+        (20817, 20958, -84),
+        (20817, 20817, 81),
+        (20817, 20737, 81),
+        (128, 257, 0),
+        (289, 279, 1),
+        (376, 257, 1),
+        (265, 257, 1),
+        (257, 273, 1),
+        (257, 257, 1),
+        (257, 257, 1),
+        (257, 257, 1),
+        (257, 257, 1),
+        (257, 1, -4),
+        (-515, -1, -1),
+        (-768, -627, -3),
+        (-531, 16149, -32),
+        (-20759, 13421, -3),
+        (-1473, 0, -6),
+        (-13516, -30719, 0),
+        (32639, 32606, 127),
+        (32640, 32636, 127),
+        (32639, 32637, 127),
+        (32639, 32638, -128),
+        (32638, 32639, 127),
+        (32637, 32639, 127),
+        (32257, 32681, 127),
+        (28211, 32767, 127),
+        (28724, 31624, -47),
+    ];
+    let islands = [
+        (31448, 28287, 32),
+        (32513, 30335, 146),
+        (30335, 32597, 0),
+        (5461, 22101, 85),
+        (5461, 20565, 81),
+        (16188, 26378, 252),
+        (-20818, -11858, 209),
+        (-11823, -11823, 63),
+    ];
+    case(&v, &islands, 1227);
+}
