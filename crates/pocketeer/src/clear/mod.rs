@@ -7,7 +7,7 @@
 //! straight line to its nearest wall point. When no gap d_(k+1) − d_k exceeds the tool radius,
 //! every point the tool centre may reach is within the radius of a loop, and the loop at d = r
 //! sweeps the rest of what the tool can reach. Wider gaps (stepovers above the radius) are
-//! filled where needed by pieces of the loop half way between, see [`residue`].
+//! filled where needed by pieces of the loop half way between, see the `residue` module.
 
 mod levels;
 mod residue;

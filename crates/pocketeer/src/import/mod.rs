@@ -1,5 +1,5 @@
 //! From DXF bytes to pockets: reading ([`dxf`]), block expansion, curves to exact lines and arcs,
-//! chaining into closed contours ([`chain`]), and nesting into pockets with islands ([`region`]).
+//! chaining into closed contours ([`mod@chain`]), and nesting into pockets with islands ([`region`]).
 
 pub mod biarc;
 pub mod chain;

@@ -57,21 +57,23 @@ impl Profile {
     }
 }
 
-/// The pieces that belong to the offset at distance `d`: not nearer than d to the profile (less
-/// a tolerance that absorbs rounding) and inside the region. Node ids must be canonical.
+/// Which of `pieces` belong to the offset at distance `d`: not nearer than d to the profile
+/// (less a tolerance that absorbs rounding) and inside the region. Node ids must be canonical;
+/// `graph` is the graph of `pieces`.
 ///
 /// Along a raw offset curve, the distance to the profile can fall below d only where the curve
 /// meets another raw offset curve, and the split stage cut every piece there. So pieces joined
 /// end to start at a node no other piece touches (a run) are valid or invalid together, and one
 /// point of each run decides: the middle of its longest piece.
 ///
-/// Joining lines (`join_at` gives the element at whose end their joint lies: the chords the
-/// raw offset puts where moved elements overlap or collapse) are no offset curve: their points are nearer than d to the joint, so the
-/// argument above does not hold along them. A join coming more than `JOIN_SLACK` inside d is
-/// a run of its own, and invalid; a shorter one stays in its run.
+/// Joining lines (the chords the raw offset puts where moved elements overlap or collapse;
+/// `join_at` gives the element at whose end their joint lies) are no offset curve: their points
+/// are nearer than d to the joint, so the argument above does not hold along them. A join
+/// coming more than `JOIN_SLACK` inside d is a run of its own, and invalid; a shorter one stays
+/// in its run.
 ///
-/// Returns which pieces are kept; `Err` with the point being judged when that would measure
-/// more than [`MAX_MEASURES`] element distances.
+/// `Err` with the point being judged when that would measure more than [`MAX_MEASURES`]
+/// element distances.
 pub fn prune(
     pieces: &[Piece],
     graph: &PieceGraph,
