@@ -607,3 +607,35 @@ fn a_node_arc_touched_inside_by_the_offset_of_a_wiggle() {
     ];
     case(&v, &islands, 1227);
 }
+
+/// The same run, the two circles joined by a neck 2.6 mm wide this time, with a round island
+/// 0.2 mm across in the big one, at d = 0.01: the node arcs round the 1e-10 mm line left a
+/// piece 4.4e-7 mm from the wall.
+#[test]
+fn a_line_shorter_than_rounding_beside_an_island() {
+    let v = [
+        (21846, 16469, 0),
+        (21845, 16469, -128),
+        (21846, -6337, -128),
+        (21846, -16299, -128),
+        (21845, -6593, -128),
+    ];
+    let boundary = imported_as_drawn(&v);
+    let island = Contour::new(vec![Segment::Arc(Arc::new(
+        Point::new(218.45, 41.17),
+        0.1,
+        0.0,
+        -std::f64::consts::TAU,
+    ))]);
+    assert!(boundary.contains(island.segments[0].start()));
+    let loops = check(
+        &Pocket {
+            boundary,
+            islands: vec![island],
+        },
+        0,
+    );
+    // One loop round both circles (the neck stays open at 0.01) and one round the island.
+    assert_eq!(loops.len(), 2);
+    assert_eq!(loops.iter().filter(|l| l.signed_area() < 0.0).count(), 1);
+}
