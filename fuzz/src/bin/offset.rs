@@ -28,7 +28,11 @@ fn contour(vertices: &[(i16, i16, i8)]) -> Option<Contour> {
             if a.distance(e) < 1e-3 {
                 return None;
             }
-            Some(Arc::from_bulge(a, e, b).map(Segment::Arc).unwrap_or(Segment::Line(Line::new(a, e))))
+            Some(
+                Arc::from_bulge(a, e, b)
+                    .map(Segment::Arc)
+                    .unwrap_or(Segment::Line(Line::new(a, e))),
+            )
         })
         .collect();
     let c = Contour::new(segs);
@@ -50,8 +54,12 @@ fn main() {
 
 fn run(data: &[u8]) {
     {
-        let Ok(input) = Input::arbitrary(&mut Unstructured::new(data)) else { return };
-        let Some(boundary) = contour(&input.vertices[..input.vertices.len().min(64)]) else { return };
+        let Ok(input) = Input::arbitrary(&mut Unstructured::new(data)) else {
+            return;
+        };
+        let Some(boundary) = contour(&input.vertices[..input.vertices.len().min(64)]) else {
+            return;
+        };
         // Only what the importer accepts is a pocket: it refuses outlines that cross themselves
         // (a pairwise test of the elements here missed shallow crossings of flat arcs) and cuts
         // away sliver loops; the offset gets its outline.
@@ -61,19 +69,30 @@ fn run(data: &[u8]) {
             layer: 0,
             elements: Vec::new(),
         };
-        let Ok(regions) = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol) else { return };
+        let Ok(regions) = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol) else {
+            return;
+        };
         let [pocket] = &regions.pockets[..] else { return };
         if !pocket.islands.is_empty() {
             return;
         }
         let boundary = pocket.boundary.clone();
         let segs = boundary.segments.clone();
-        let boundary = if boundary.is_ccw() { boundary } else { boundary.reversed() };
+        let boundary = if boundary.is_ccw() {
+            boundary
+        } else {
+            boundary.reversed()
+        };
         let islands: Vec<Contour> = input
             .islands
             .iter()
             .take(4)
-            .map(|&(x, y, r)| (Point::new(x as f64 / 100.0, y as f64 / 100.0), 0.1 + r as f64 / 20.0))
+            .map(|&(x, y, r)| {
+                (
+                    Point::new(x as f64 / 100.0, y as f64 / 100.0),
+                    0.1 + r as f64 / 20.0,
+                )
+            })
             .filter(|&(c, r)| boundary.contains(c) && segs.iter().all(|s| point_distance(s, c) > r + 0.01))
             .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
             .collect();
@@ -89,19 +108,40 @@ fn run(data: &[u8]) {
         let d = 0.01 + input.distance as f64 / 1000.0;
         let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
         // A refusal (too complex) is an answer; these inputs are far too small to reach it.
-        let Ok(loops) = pocketeer::offset::offset_pocket(&pocket, d, &tol) else { return };
+        let Ok(loops) = pocketeer::offset::offset_pocket(&pocket, d, &tol) else {
+            return;
+        };
         let profile: Vec<Segment> = std::iter::once(&pocket.boundary)
             .chain(&pocket.islands)
             .flat_map(|c| c.segments.iter().copied())
             .collect();
+        // The documented exceptions to the accuracy (`offset` module docs): up to 1e-5 mm inside
+        // d where raw offset curves meet tangentially, around an element a few micrometres
+        // across or an arc of radius within micrometres of d. With `STRICT` set the target
+        // holds every point to 1e-6; without, it looks past those places for new failures.
+        let strict = std::env::var_os("STRICT").is_some();
+        let tangency_near = |m: Point| {
+            profile.iter().any(|s| {
+                let tiny = s.length() < 0.05;
+                let radius_d = matches!(s, Segment::Arc(a) if (a.radius - d).abs() < 1e-3);
+                (tiny || radius_d) && point_distance(s, m) < 3.0 * d
+            })
+        };
         for l in &loops {
             let n = l.segments.len();
             for k in 0..n {
                 let (a, b) = (l.segments[k], l.segments[(k + 1) % n]);
                 assert!(a.end().distance(b.start()) < 1e-6, "loop not closed");
                 let m = a.point_at(0.5);
-                let dist = profile.iter().map(|s| point_distance(s, m)).fold(f64::INFINITY, f64::min);
-                assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "point at {dist}, not {d}");
+                let dist = profile
+                    .iter()
+                    .map(|s| point_distance(s, m))
+                    .fold(f64::INFINITY, f64::min);
+                let exception = !strict && dist < d && d - dist <= 1e-5 && tangency_near(m);
+                assert!(
+                    exception || (dist - d).abs() <= 1e-6 * d.max(1.0),
+                    "point at {dist}, not {d}"
+                );
             }
         }
     }
