@@ -639,3 +639,102 @@ fn a_line_shorter_than_rounding_beside_an_island() {
     assert_eq!(loops.len(), 2);
     assert_eq!(loops.iter().filter(|l| l.signed_area() < 0.0).count(), 1);
 }
+
+/// As the fuzz target takes an input: the importer's one pocket, then the round islands inside
+/// it and clear of its outline.
+fn fuzz_case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
+    let boundary = imported_as_drawn(&vertices[..vertices.len().min(64)]);
+    let islands: Vec<Contour> = islands
+        .iter()
+        .take(4)
+        .map(|&(x, y, r)| {
+            (
+                Point::new(x as f64 / 100.0, y as f64 / 100.0),
+                0.1 + r as f64 / 20.0,
+            )
+        })
+        .filter(|&(c, r)| {
+            boundary.contains(c) && boundary.segments.iter().all(|s| point_distance(s, c) > r + 0.01)
+        })
+        .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
+        .collect();
+    check(&Pocket { boundary, islands }, distance);
+}
+
+/// Found by the eleventh run (with fifteen more like it, d = 0.267, 0.5 and 0.515), past the
+/// documented exceptions: the importer makes 13 elements of the 64 vertices (the zigzag of
+/// 0.01 mm steps at its start collapses), among them two arcs 0.006 and 0.008 mm in radius
+/// side by side at a joint near (177.33, 177.33). At d = 0.5 a piece of the offset comes
+/// 7.7e-4 mm inside d next to them (2.3e-3 mm at d = 0.267): the same neighbourhood as the
+/// tangency exceptions, but far beyond their 1e-5 mm, and not yet analysed.
+#[test]
+#[ignore = "open: next to two arcs 0.006-0.008 mm in radius an offset piece comes 7.7e-4 mm inside d = 0.5 (2.3e-3 at 0.267)"]
+fn two_arcs_a_few_micrometres_across_at_a_joint() {
+    let v = [
+        (66, 10241, 1),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 256, 0),
+        (257, 257, 0),
+        (9826, 24756, 0),
+        (17733, 18757, 122),
+        (17733, 17765, 117),
+        (17732, 17733, 47),
+        (17733, 17733, 69),
+        (17733, 17732, 65),
+        (17987, 17474, -79),
+        (-4113, -4113, -106),
+        (-4113, -4113, -49),
+        (-12337, -19249, 70),
+        (26607, 26471, 103),
+        (26471, 26471, 103),
+        (26471, 26471, 103),
+        (26471, 26471, 103),
+        (26471, 26471, 103),
+        (26471, 26471, 103),
+    ];
+    fuzz_case(&v, &[(-12337, -1570, 1), (256, 256, 1)], 490);
+}

@@ -3,14 +3,17 @@
 //!
 //! Accuracy: the loops are made of exact lines and arcs, and every point of them lies at
 //! distance d from the profile within 1e-6 · max(d, 1 mm) (the property tests and the offset
-//! fuzz target check it piece by piece). The exceptions, all found by fuzzing and all within
-//! 1e-5 mm so far, are places where raw offset curves meet tangentially to within rounding,
-//! so that the split finds no crossing to cut at: the short chord that closes a loop where two
+//! fuzz target check it piece by piece). Three exceptions, found by fuzzing, are places where
+//! raw offset curves meet tangentially to within rounding, so that the split finds no crossing
+//! to cut at: the short chord that closes a loop where two
 //! moved elements almost meet at a joint (curved elements a few micrometres across, at a
 //! distance of the same order; judging it invalid would open the loop and lose it); the
 //! pieces a few hundredths of a micrometre long round the point an arc of radius within
 //! micrometres of d offsets to; and a node arc touched from inside by the offset of an arc a
-//! few micrometres in radius at its joint. Each is kept as an ignored regression test.
+//! few micrometres in radius at its joint. These three come at most 1e-5 mm inside d. A fourth
+//! place, next to two arcs a few micrometres in radius side by side at a joint, came 2.3e-3 mm
+//! inside d; what happens there is not yet understood. Each is kept as an ignored regression
+//! test.
 
 mod clip;
 mod levels;
