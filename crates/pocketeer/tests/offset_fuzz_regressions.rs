@@ -40,14 +40,7 @@ fn outline(vertices: &[(i16, i16, i8)]) -> Contour {
 /// The outline of the one pocket the importer finds in the bulged polygon taken in its own
 /// direction, as the fuzz target takes it (the importer cuts away sliver loops).
 fn imported_as_drawn(vertices: &[(i16, i16, i8)]) -> Contour {
-    let raw = polygon(vertices);
-    let tol = Tolerance::for_extent(&raw.bbox(), 0.001);
-    let chained = pocketeer::import::ChainedContour {
-        contour: raw,
-        layer: 0,
-        elements: Vec::new(),
-    };
-    let regions = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol).unwrap();
+    let regions = regions_of(polygon(vertices)).unwrap();
     assert_eq!(regions.pockets.len(), 1);
     let boundary = regions.pockets[0].boundary.clone();
     if boundary.is_ccw() {
@@ -57,9 +50,21 @@ fn imported_as_drawn(vertices: &[(i16, i16, i8)]) -> Contour {
     }
 }
 
-fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
-    let boundary = outline(vertices);
-    let islands: Vec<Contour> = islands
+/// The importer's verdict on one contour.
+fn regions_of(contour: Contour) -> Result<pocketeer::import::Regions, pocketeer::ImportError> {
+    let tol = Tolerance::for_extent(&contour.bbox(), 0.001);
+    let chained = pocketeer::import::ChainedContour {
+        contour,
+        layer: 0,
+        elements: Vec::new(),
+    };
+    pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol)
+}
+
+/// The fuzz input's round islands (hundredths of a millimetre, radius 0.1 + r/20) that lie
+/// inside `boundary` and clear of it.
+fn round_islands(boundary: &Contour, islands: &[(i16, i16, u8)]) -> Vec<Contour> {
+    islands
         .iter()
         .map(|&(x, y, r)| {
             (
@@ -71,7 +76,12 @@ fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) 
             boundary.contains(c) && boundary.segments.iter().all(|s| point_distance(s, c) > r + 0.01)
         })
         .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
-        .collect();
+        .collect()
+}
+
+fn case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
+    let boundary = outline(vertices);
+    let islands = round_islands(&boundary, islands);
     check(&Pocket { boundary, islands }, distance);
 }
 
@@ -319,14 +329,7 @@ fn three_tiny_semicircles_at_a_hundredth() {
 
 /// The importer's verdict on `case`'s outline.
 fn imported(vertices: &[(i16, i16, i8)]) -> Result<pocketeer::import::Regions, pocketeer::ImportError> {
-    let boundary = outline(vertices);
-    let tol = Tolerance::for_extent(&boundary.bbox(), 0.001);
-    let chained = pocketeer::import::ChainedContour {
-        contour: boundary,
-        layer: 0,
-        elements: Vec::new(),
-    };
-    pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol)
+    regions_of(outline(vertices))
 }
 
 #[test]
@@ -644,20 +647,7 @@ fn a_line_shorter_than_rounding_beside_an_island() {
 /// it and clear of its outline.
 fn fuzz_case(vertices: &[(i16, i16, i8)], islands: &[(i16, i16, u8)], distance: u16) {
     let boundary = imported_as_drawn(&vertices[..vertices.len().min(64)]);
-    let islands: Vec<Contour> = islands
-        .iter()
-        .take(4)
-        .map(|&(x, y, r)| {
-            (
-                Point::new(x as f64 / 100.0, y as f64 / 100.0),
-                0.1 + r as f64 / 20.0,
-            )
-        })
-        .filter(|&(c, r)| {
-            boundary.contains(c) && boundary.segments.iter().all(|s| point_distance(s, c) > r + 0.01)
-        })
-        .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
-        .collect();
+    let islands = round_islands(&boundary, &islands[..islands.len().min(4)]);
     check(&Pocket { boundary, islands }, distance);
 }
 

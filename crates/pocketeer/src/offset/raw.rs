@@ -320,11 +320,7 @@ mod tests {
         // Clockwise square: material (the pocket) on its left, outside.
         let p = Point::new;
         let c = [p(0.0, 0.0), p(0.0, 10.0), p(10.0, 10.0), p(10.0, 0.0)];
-        let contour = Contour::new(
-            (0..4)
-                .map(|k| Segment::Line(Line::new(c[k], c[(k + 1) % 4])))
-                .collect(),
-        );
+        let contour = Contour::polygon(&c);
         let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, (0, 4), &|_| true);
         assert_eq!(pieces.len(), 8);
         assert_eq!(next, 8);
@@ -351,11 +347,7 @@ mod tests {
     fn only_the_wanted_pieces_and_the_joints_beside_them_are_returned() {
         let p = Point::new;
         let c = [p(0.0, 0.0), p(0.0, 10.0), p(10.0, 10.0), p(10.0, 0.0)];
-        let contour = Contour::new(
-            (0..4)
-                .map(|k| Segment::Line(Line::new(c[k], c[(k + 1) % 4])))
-                .collect(),
-        );
+        let contour = Contour::polygon(&c);
         let tol = Tolerance::default();
         let (all, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|_| true);
         // Element 2 (source 2): its moved edge and the corner arcs at either end of it (the
