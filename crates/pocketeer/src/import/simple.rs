@@ -5,7 +5,9 @@
 //! loop, so a self-crossing whose smaller side fits in [`SLIVER_FACTOR`] join tolerances is
 //! removed (and reported); any other self-crossing is refused with its coordinates.
 
-use crate::geom::{intersect, Aabb, BoxIndex, Contour, Intersection, Line, Point, Segment, Tolerance};
+use crate::geom::{
+    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Line, Point, Segment, Tolerance,
+};
 
 /// A loop cut off by a self-crossing is a sliver when its extent is at most this many join
 /// tolerances.
@@ -66,26 +68,42 @@ fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Interse
     }
     let boxes: Vec<Aabb> = segs.iter().map(|s| s.bbox().inflated(tol.eps)).collect();
     let index = BoxIndex::new(&boxes);
+    // Neighbours turning back tangentially at their joint meet again to within rounding up to
+    // about sqrt(2 r eps) from it: hits that near, on curves that do not part, are the joint.
     let joint_radius = tol.join.max(100.0 * tol.eps);
     for (i, j) in index.pairs() {
-        let mut joints = Vec::new();
-        if i + 1 == j {
-            joints.push(segs[j].start());
-        }
-        if (j + 1) % n == i {
-            joints.push(segs[i].start());
-        }
         for h in intersect(&segs[i], &segs[j], tol.eps).iter() {
-            let at_joint = match h {
-                Intersection::Point { point, .. } => joints.iter().any(|q| q.distance(point) <= joint_radius),
-                Intersection::Overlap { .. } => false,
+            let Intersection::Point { point, ta, tb } = h else {
+                // The contour runs back over itself.
+                return Some((i, j, h));
             };
+            // Where i ends at j's start, the stretches of each between the hit and that joint;
+            // where j ends at i's start (the contour's closing joint), the same the other way.
+            // (A contour of two elements has both.)
+            let ends_at_j = (i + 1 == j).then(|| (segs[j].start(), (ta, 1.0), (0.0, tb)));
+            let j_ends_at = ((j + 1) % n == i).then(|| (segs[i].start(), (0.0, ta), (tb, 1.0)));
+            let at_joint = ends_at_j.into_iter().chain(j_ends_at).any(|(joint, a, b)| {
+                joint.distance(point) <= joint_radius && !lobe_between(&segs[i], a, &segs[j], b, tol)
+            });
             if !at_joint {
                 return Some((i, j, h));
             }
         }
     }
     None
+}
+
+/// Whether neighbours `a` and `b`, meeting again at the far ends of their stretches `sa` and
+/// `sb` from their shared joint, enclose a loop there: whether the stretches part by more than
+/// two curves touching at the joint do through rounding. Two arcs micrometres across turning
+/// back at a joint and crossing again 0.8 µm further on enclose a sliver to remove; a line
+/// turning back along a tangent arc does not.
+fn lobe_between(a: &Segment, sa: (f64, f64), b: &Segment, sb: (f64, f64), tol: &Tolerance) -> bool {
+    let width = 100.0 * tol.eps;
+    let apart = |s: &Segment, (t0, t1): (f64, f64), other: &Segment| {
+        (t1 - t0) * s.length() > width && point_distance(other, s.point_at(0.5 * (t0 + t1))) > width
+    };
+    apart(a, sa, b) || apart(b, sb, a)
 }
 
 /// Cuts the contour at the crossing of segments `i` (at `ta`) and `j` (at `tb`): the loop
@@ -118,6 +136,7 @@ fn split_loops(c: &Contour, i: usize, j: usize, ta: f64, tb: f64, p: Point) -> (
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::Arc;
 
     fn polygon(pts: &[(f64, f64)]) -> Contour {
         Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
@@ -146,6 +165,62 @@ mod tests {
         let expected = 0.5 * (100.0 + 60.0) * 50.0;
         // The bottom edge now rises by 3 µm over 100 mm: 0.15 mm² less than the trapezoid.
         assert!((simple.signed_area().abs() - (expected - 0.15)).abs() < 1e-3);
+    }
+
+    #[test]
+    fn arcs_turning_back_at_a_joint_and_crossing_again_within_the_join_tolerance_lose_the_sliver() {
+        // Two arcs 0.008 and 0.006 mm in radius, as the importer once left them (fuzz input
+        // `two_arcs_a_few_micrometres_across_at_a_joint`): they turn back by 173° at their
+        // joint and cross again 0.8 µm from it, closer than the join tolerance, enclosing a
+        // lobe 2e-5 mm wide that was taken for the joint.
+        let a = Arc::new(
+            Point::new(177.325, 177.33589054188832),
+            0.007726479388300923,
+            -2.2746039776237192,
+            1.4076153016598592,
+        );
+        let b = Arc::new(
+            Point::new(177.33329002490945, 177.325),
+            0.005985337409446964,
+            2.1527783834467584,
+            1.9776285402851015,
+        );
+        let below = Point::new(177.33, 167.32);
+        let c = Contour::new(vec![
+            Segment::Arc(a),
+            Segment::Arc(b),
+            Segment::Line(Line::new(b.end(), below)),
+            Segment::Line(Line::new(below, a.start())),
+        ]);
+        let tol = Tolerance::default();
+        assert!(a.end().distance(b.start()) < 1e-12);
+        let (simple, removed) = make_simple(&c, &tol).unwrap();
+        assert_eq!(removed.len(), 1);
+        assert!(
+            removed[0].distance(Point::new(177.329347, 177.329503)) < 1e-6,
+            "{removed:?}"
+        );
+        assert!(first_crossing(&simple, &tol).is_none());
+        assert_eq!(simple.segments.len(), 4);
+    }
+
+    #[test]
+    fn a_line_running_back_along_a_tangent_arc_meets_it_only_at_their_joint() {
+        // A cusp: the arc leaves the line's end heading back along it, touching it there.
+        let a = Arc::new(
+            Point::new(10.0, 1.0),
+            1.0,
+            -std::f64::consts::FRAC_PI_2,
+            -std::f64::consts::FRAC_PI_2,
+        );
+        let c = Contour::new(vec![
+            Segment::Line(Line::new(Point::new(0.0, 0.0), Point::new(10.0, 0.0))),
+            Segment::Arc(a),
+            Segment::Line(Line::new(a.end(), Point::new(0.0, 0.0))),
+        ]);
+        let (simple, removed) = make_simple(&c, &Tolerance::default()).unwrap();
+        assert!(removed.is_empty());
+        assert_eq!(simple, c);
     }
 
     #[test]
