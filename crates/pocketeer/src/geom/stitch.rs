@@ -41,11 +41,19 @@ pub fn stitch(pieces: &[Piece]) -> (Vec<Contour>, usize) {
 }
 
 /// [`stitch`] over the pieces `kept` marks, with their graph already built.
+///
+/// A walk that comes back to a node it passed (a loop touching itself at a point) closes the
+/// loop from there and goes on with the rest: the loops returned pass each node once. Where
+/// offset curves meet tangentially the turns at a node are equal to within rounding, and this
+/// keeps a sliver beyond the meeting point a loop of its own (one that the caller can tell
+/// by its area) instead of a detour of its neighbour's.
 pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -> (Vec<Contour>, usize) {
     let mut used: Vec<bool> = kept.iter().map(|k| !k).collect();
     let mut loops = Vec::new();
     let mut lost = 0;
-    let mut chain = Vec::new();
+    let mut chain: Vec<usize> = Vec::new();
+    // Where in `chain` the piece leaving each node the walk passed is.
+    let mut passed: Vec<usize> = vec![usize::MAX; graph.nodes()];
     for start in 0..pieces.len() {
         if used[start] {
             continue;
@@ -53,11 +61,26 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
         used[start] = true;
         chain.clear();
         chain.push(start);
+        passed[pieces[start].start] = 0;
         loop {
+            let node = pieces[chain[chain.len() - 1]].end;
+            let at = passed[node];
+            if at != usize::MAX {
+                loops.push(Contour::new(
+                    chain[at..].iter().map(|&k| pieces[k].segment).collect(),
+                ));
+                for &k in &chain[at + 1..] {
+                    passed[pieces[k].start] = usize::MAX;
+                }
+                chain.truncate(at);
+                if at == 0 {
+                    passed[node] = usize::MAX;
+                    break;
+                }
+            }
             let last = &pieces[chain[chain.len() - 1]];
             let options = graph.leaving(last.end);
-            // The first piece is a candidate too: taking it closes the loop.
-            let mut open = options.iter().copied().filter(|&i| !used[i] || i == start);
+            let mut open = options.iter().copied().filter(|&i| !used[i]);
             let next = if options.len() == 1 {
                 open.next()
             } else {
@@ -69,16 +92,16 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
                 })
             };
             match next {
-                Some(i) if i == start => {
-                    loops.push(Contour::new(chain.iter().map(|&k| pieces[k].segment).collect()));
-                    break;
-                }
                 Some(i) => {
                     used[i] = true;
+                    passed[pieces[i].start] = chain.len();
                     chain.push(i);
                 }
                 None => {
                     lost += chain.len();
+                    for &k in &chain {
+                        passed[pieces[k].start] = usize::MAX;
+                    }
                     break;
                 }
             }
@@ -183,4 +206,51 @@ pub fn cluster_points(points: &[Point], r: f64) -> Vec<usize> {
         grid.entry((cx, cy)).or_default().push(k);
     }
     (0..points.len()).map(|k| sets.find(k)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Line;
+
+    /// Pieces along `path`, a list of (node, point), closed back to its first entry.
+    fn pieces_along(path: &[(usize, Point)]) -> Vec<Piece> {
+        (0..path.len())
+            .map(|k| {
+                let ((a, p), (b, q)) = (path[k], path[(k + 1) % path.len()]);
+                Piece {
+                    segment: Segment::Line(Line::new(p, q)),
+                    start: a,
+                    end: b,
+                    source: 0,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_walk_back_through_a_node_it_passed_closes_a_loop_there() {
+        let p = Point::new;
+        // A 4 × 4 square whose bottom edge passes node 1 twice: once into a triangle inside it
+        // (the sharpest left turn there), once out of it. Two loops, not one of area 17.
+        let pieces = pieces_along(&[
+            (0, p(0.0, 0.0)),
+            (1, p(2.0, 0.0)),
+            (2, p(3.0, 1.0)),
+            (3, p(1.0, 1.0)),
+            (1, p(2.0, 0.0)),
+            (4, p(4.0, 0.0)),
+            (5, p(4.0, 4.0)),
+            (6, p(0.0, 4.0)),
+        ]);
+        let (loops, lost) = stitch(&pieces);
+        assert_eq!(lost, 0);
+        let mut areas: Vec<f64> = loops.iter().map(Contour::signed_area).collect();
+        areas.sort_by(f64::total_cmp);
+        assert_eq!(areas.len(), 2, "{areas:?}");
+        assert!(
+            (areas[0] - 1.0).abs() < 1e-12 && (areas[1] - 16.0).abs() < 1e-12,
+            "{areas:?}"
+        );
+    }
 }

@@ -8,14 +8,12 @@
 //!
 //! Accuracy: the loops are made of exact lines and arcs, and every point of them lies at
 //! distance d from the profile within 1e-6 · max(d, 1 mm) (the property tests and the offset
-//! fuzz target check it piece by piece). One exception, found by fuzzing: the short chord
-//! that closes a loop where two moved elements almost meet at a joint (curved elements a few
-//! micrometres across, or an arc of radius within micrometres of d, at a distance of the same
-//! order; judging it invalid would open the loop and lose it) may come up to 1e-5 mm inside d.
-//! It is kept as an ignored regression test. (Three other kinds of place the fuzzer found, up
-//! to 2.3e-3 mm inside d next to arcs a few micrometres in radius, were outlines crossing
-//! themselves within the join tolerance of a joint, which the importer took for the joint; it
-//! now removes such sliver loops.)
+//! fuzz target check it piece by piece). Where raw offset curves meet tangentially to within
+//! rounding, around elements a few micrometres across or an arc of radius d, the split may
+//! find no crossing to cut at: a joining chord coming less than `JOIN_SLACK` (1e-5 mm) inside
+//! d stays in its run so that the loop it closes is not lost, and stitching closes a loop
+//! wherever its walk comes back to a node it passed, so that a detour through such a chord
+//! beyond the true meeting point is a sliver loop of its own and goes.
 
 mod clip;
 mod levels;
