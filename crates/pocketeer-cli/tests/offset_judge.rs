@@ -1,0 +1,756 @@
+//! `pocketeer offset` judged as the issue judges it, on one drawing of each kind it names: the
+//! drawing is written as DXF, offset by the command, the loops read back from its output, and
+//! compared with the true boundary of the region eroded by d, found here independently of the
+//! library by brute force.
+//!
+//! The oracle: every point at distance exactly d from the profile that lies inside the region
+//! and no nearer than d to any element is on the eroded boundary, and every point of that
+//! boundary lies on an element moved by d, a concentric arc of radius r ± d, or a circle of
+//! radius d round an element's end. So points sampled along those curves and kept when valid
+//! are samples of the true boundary; they must all lie on the loops read back (Hausdorff, one
+//! way), every point of the loops must be at distance d from the profile and inside the region
+//! (the other way), and the samples must fall into as many connected groups as there are loops.
+//! The geometry, distances and region test here are written for this test alone.
+
+use std::f64::consts::{PI, TAU};
+use std::path::Path;
+use std::process::Command;
+
+type P = (f64, f64);
+
+/// A line or an arc (signed sweep, radians) of a drawing, in millimetres.
+#[derive(Clone, Copy, Debug)]
+enum El {
+    Line(P, P),
+    Arc { c: P, r: f64, a0: f64, sweep: f64 },
+}
+
+fn add(a: P, b: P) -> P {
+    (a.0 + b.0, a.1 + b.1)
+}
+fn sub(a: P, b: P) -> P {
+    (a.0 - b.0, a.1 - b.1)
+}
+fn mul(a: P, k: f64) -> P {
+    (a.0 * k, a.1 * k)
+}
+fn len(a: P) -> f64 {
+    a.0.hypot(a.1)
+}
+fn polar(c: P, r: f64, a: f64) -> P {
+    (c.0 + r * a.cos(), c.1 + r * a.sin())
+}
+
+impl El {
+    fn start(&self) -> P {
+        self.at(0.0)
+    }
+    fn end(&self) -> P {
+        self.at(1.0)
+    }
+    fn at(&self, t: f64) -> P {
+        match *self {
+            El::Line(p, q) => add(p, mul(sub(q, p), t)),
+            El::Arc { c, r, a0, sweep } => polar(c, r, a0 + sweep * t),
+        }
+    }
+    fn length(&self) -> f64 {
+        match *self {
+            El::Line(p, q) => len(sub(q, p)),
+            El::Arc { r, sweep, .. } => r * sweep.abs(),
+        }
+    }
+    fn distance(&self, p: P) -> f64 {
+        match *self {
+            El::Line(a, b) => {
+                let (ab, ap) = (sub(b, a), sub(p, a));
+                let l2 = ab.0 * ab.0 + ab.1 * ab.1;
+                let t = if l2 > 0.0 {
+                    ((ap.0 * ab.0 + ap.1 * ab.1) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                len(sub(p, add(a, mul(ab, t))))
+            }
+            El::Arc { c, r, a0, sweep } => {
+                let v = sub(p, c);
+                let ang = v.1.atan2(v.0);
+                // How far round from the start, in the arc's own direction.
+                let round = if sweep >= 0.0 {
+                    (ang - a0).rem_euclid(TAU)
+                } else {
+                    (a0 - ang).rem_euclid(TAU)
+                };
+                if round <= sweep.abs() {
+                    (len(v) - r).abs()
+                } else {
+                    len(sub(p, self.start())).min(len(sub(p, self.end())))
+                }
+            }
+        }
+    }
+    /// Points along the element at most `step` apart, ends included.
+    fn samples(&self, step: f64) -> Vec<P> {
+        let n = (self.length() / step).ceil().max(2.0) as usize;
+        (0..=n).map(|k| self.at(k as f64 / n as f64)).collect()
+    }
+}
+
+/// The arc from `p` to `q` with DXF bulge `b` (tan of a quarter of the signed sweep).
+fn bulge_arc(p: P, q: P, b: f64) -> El {
+    if b == 0.0 {
+        return El::Line(p, q);
+    }
+    let sweep = 4.0 * b.atan();
+    let chord = len(sub(q, p));
+    let r = chord / (2.0 * (sweep / 2.0).sin().abs());
+    // The centre lies off the chord's middle, to the left for a counter-clockwise sweep.
+    let m = mul(add(p, q), 0.5);
+    let u = mul(sub(q, p), 1.0 / chord);
+    let h = (r * r - chord * chord / 4.0).max(0.0).sqrt();
+    let side = if (sweep.abs() < PI) == (sweep > 0.0) {
+        1.0
+    } else {
+        -1.0
+    };
+    let c = add(m, mul((-u.1, u.0), side * h));
+    let a0 = (p.1 - c.1).atan2(p.0 - c.0);
+    El::Arc { c, r, a0, sweep }
+}
+
+/// A closed contour through `pts` (x, y, bulge to the next point).
+fn bulged(pts: &[(f64, f64, f64)]) -> Vec<El> {
+    (0..pts.len())
+        .map(|k| {
+            let (x, y, b) = pts[k];
+            let (u, v, _) = pts[(k + 1) % pts.len()];
+            bulge_arc((x, y), (u, v), b)
+        })
+        .collect()
+}
+
+fn circle(c: P, r: f64) -> Vec<El> {
+    vec![El::Arc {
+        c,
+        r,
+        a0: 0.0,
+        sweep: TAU,
+    }]
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<El> {
+    bulged(&[(x0, y0, 0.0), (x1, y0, 0.0), (x1, y1, 0.0), (x0, y1, 0.0)])
+}
+
+/// A rectangle with its corners rounded to radius `r` (counter-clockwise).
+fn rounded(x0: f64, y0: f64, x1: f64, y1: f64, r: f64) -> Vec<El> {
+    let b = (PI / 8.0).tan();
+    bulged(&[
+        (x0 + r, y0, 0.0),
+        (x1 - r, y0, b),
+        (x1, y0 + r, 0.0),
+        (x1, y1 - r, b),
+        (x1 - r, y1, 0.0),
+        (x0 + r, y1, b),
+        (x0, y1 - r, 0.0),
+        (x0, y0 + r, b),
+    ])
+}
+
+/// How the drawing writes its contours.
+#[derive(Clone, Copy, PartialEq)]
+enum Style {
+    /// Closed LWPOLYLINEs with bulges (full circles as CIRCLE).
+    Polylines,
+    /// Separate LINE and ARC entities in shuffled order, every other line drawn backwards.
+    Shuffled,
+}
+
+/// One judged drawing: its contours in drawing units, each +1 (bounds material to remove) or
+/// -1 (an island), the units (`$INSUNITS`: 4 mm, 1 inch) and the tool radius in mm.
+#[derive(Clone)]
+struct Case {
+    name: &'static str,
+    contours: Vec<(Vec<El>, i32)>,
+    style: Style,
+    insunits: i32,
+    d: f64,
+}
+
+impl Case {
+    fn mm(&self) -> f64 {
+        if self.insunits == 1 {
+            25.4
+        } else {
+            1.0
+        }
+    }
+
+    fn dxf(&self) -> String {
+        let mut s = format!(
+            "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n{}\n0\nENDSEC\n",
+            self.insunits
+        );
+        s += "0\nSECTION\n2\nENTITIES\n";
+        let mut entities: Vec<String> = Vec::new();
+        for (els, _) in &self.contours {
+            if let [El::Arc { c, r, sweep, .. }] = els.as_slice() {
+                if sweep.abs() >= TAU {
+                    entities.push(format!(
+                        "0\nCIRCLE\n8\nparts\n10\n{}\n20\n{}\n40\n{}\n",
+                        c.0, c.1, r
+                    ));
+                    continue;
+                }
+            }
+            match self.style {
+                Style::Polylines => {
+                    let mut e = format!("0\nLWPOLYLINE\n8\nparts\n90\n{}\n70\n1\n", els.len());
+                    for el in els {
+                        let p = el.start();
+                        e += &format!("10\n{}\n20\n{}\n", p.0, p.1);
+                        if let El::Arc { sweep, .. } = el {
+                            e += &format!("42\n{}\n", (sweep / 4.0).tan());
+                        }
+                    }
+                    entities.push(e);
+                }
+                Style::Shuffled => {
+                    for (k, el) in els.iter().enumerate() {
+                        entities.push(match *el {
+                            El::Line(p, q) => {
+                                let (p, q) = if k % 2 == 1 { (q, p) } else { (p, q) };
+                                format!(
+                                    "0\nLINE\n8\nparts\n10\n{}\n20\n{}\n11\n{}\n21\n{}\n",
+                                    p.0, p.1, q.0, q.1
+                                )
+                            }
+                            El::Arc { c, r, a0, sweep } => {
+                                // DXF arcs run counter-clockwise, in degrees.
+                                let (from, to) = if sweep > 0.0 {
+                                    (a0, a0 + sweep)
+                                } else {
+                                    (a0 + sweep, a0)
+                                };
+                                format!(
+                                    "0\nARC\n8\nparts\n10\n{}\n20\n{}\n40\n{}\n50\n{}\n51\n{}\n",
+                                    c.0,
+                                    c.1,
+                                    r,
+                                    from.to_degrees(),
+                                    to.to_degrees()
+                                )
+                            }
+                        });
+                    }
+                }
+            }
+        }
+        if self.style == Style::Shuffled {
+            // A fixed shuffle: every seventh entity first, then the rest backwards.
+            let (mut head, mut tail): (Vec<String>, Vec<String>) = (Vec::new(), Vec::new());
+            for (k, e) in entities.into_iter().enumerate() {
+                if k % 7 == 3 {
+                    head.push(e);
+                } else {
+                    tail.push(e);
+                }
+            }
+            tail.reverse();
+            entities = head.into_iter().chain(tail).collect();
+        }
+        s + &entities.concat() + "0\nENDSEC\n0\nEOF\n"
+    }
+
+    /// The profile in millimetres, with each contour's sign.
+    fn profile_mm(&self) -> Vec<(Vec<El>, i32)> {
+        let k = self.mm();
+        self.contours
+            .iter()
+            .map(|(els, sign)| {
+                let els = els
+                    .iter()
+                    .map(|el| match *el {
+                        El::Line(p, q) => El::Line(mul(p, k), mul(q, k)),
+                        El::Arc { c, r, a0, sweep } => El::Arc {
+                            c: mul(c, k),
+                            r: r * k,
+                            a0,
+                            sweep,
+                        },
+                    })
+                    .collect();
+                (els, *sign)
+            })
+            .collect()
+    }
+}
+
+/// The region to erode: the profile's elements, and each contour flattened (chords within
+/// 1e-4 mm, far below the distances its points are tested at) with its sign and box.
+struct Region {
+    els: Vec<El>,
+    polygons: Vec<(Vec<P>, i32, (P, P))>,
+}
+
+impl Region {
+    fn new(profile: &[(Vec<El>, i32)]) -> Region {
+        let polygons = profile
+            .iter()
+            .map(|(els, sign)| {
+                let mut pts: Vec<P> = Vec::new();
+                for el in els {
+                    let n = match *el {
+                        El::Line(..) => 1,
+                        El::Arc { r, sweep, .. } => {
+                            let step = 2.0 * (1.0 - 1e-4 / r).clamp(-1.0, 1.0).acos();
+                            (sweep.abs() / step.max(1e-3)).ceil().max(1.0) as usize
+                        }
+                    };
+                    pts.extend((0..n).map(|k| el.at(k as f64 / n as f64)));
+                }
+                let lo = pts.iter().fold((f64::INFINITY, f64::INFINITY), |m, p| {
+                    (m.0.min(p.0), m.1.min(p.1))
+                });
+                let hi = pts.iter().fold((f64::NEG_INFINITY, f64::NEG_INFINITY), |m, p| {
+                    (m.0.max(p.0), m.1.max(p.1))
+                });
+                (pts, *sign, (lo, hi))
+            })
+            .collect();
+        Region {
+            els: profile.iter().flat_map(|(e, _)| e.iter().copied()).collect(),
+            polygons,
+        }
+    }
+
+    /// Material to remove at `p`: the signs of the contours round it add up to more than zero
+    /// (crossings of a ray to +x with each contour).
+    fn contains(&self, p: P) -> bool {
+        let mut sum = 0;
+        for (pts, sign, (lo, hi)) in &self.polygons {
+            if p.0 < lo.0 || p.0 > hi.0 || p.1 < lo.1 || p.1 > hi.1 {
+                continue;
+            }
+            let mut inside = false;
+            for k in 0..pts.len() {
+                let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+                if (a.1 > p.1) != (b.1 > p.1) && a.0 + (p.1 - a.1) / (b.1 - a.1) * (b.0 - a.0) > p.0 {
+                    inside = !inside;
+                }
+            }
+            if inside {
+                sum += sign;
+            }
+        }
+        sum > 0
+    }
+
+    fn distance(&self, p: P) -> f64 {
+        self.els
+            .iter()
+            .map(|e| e.distance(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Samples of the true boundary of the region eroded by `d`, `step` apart along each curve.
+fn true_boundary(region: &Region, d: f64, step: f64) -> Vec<P> {
+    let mut candidates: Vec<El> = Vec::new();
+    for el in &region.els {
+        match *el {
+            El::Line(p, q) => {
+                let u = mul(sub(q, p), 1.0 / len(sub(q, p)));
+                for side in [-1.0, 1.0] {
+                    let n = mul((-u.1, u.0), side * d);
+                    candidates.push(El::Line(add(p, n), add(q, n)));
+                }
+            }
+            El::Arc { c, r, a0, sweep } => {
+                for rr in [r + d, r - d] {
+                    if rr > 0.0 {
+                        candidates.push(El::Arc { c, r: rr, a0, sweep });
+                    }
+                }
+            }
+        }
+        candidates.push(El::Arc {
+            c: el.start(),
+            r: d,
+            a0: 0.0,
+            sweep: TAU,
+        });
+    }
+    let valid = |p: P| region.els.iter().all(|e| e.distance(p) >= d - 1e-7) && region.contains(p);
+    candidates
+        .iter()
+        .flat_map(|c| c.samples(step))
+        .filter(|&p| valid(p))
+        .collect()
+}
+
+/// The number of groups the points fall into, points nearer than `r` joining a group.
+fn groups(points: &[P], r: f64) -> usize {
+    let mut parent: Vec<usize> = (0..points.len()).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let cell = |p: P| ((p.0 / r).floor() as i64, (p.1 / r).floor() as i64);
+    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> = std::collections::HashMap::new();
+    for (k, &p) in points.iter().enumerate() {
+        let (cx, cy) = cell(p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for &o in grid.get(&(cx + dx, cy + dy)).map(Vec::as_slice).unwrap_or(&[]) {
+                    if len(sub(points[o], p)) < r {
+                        let (a, b) = (find(&mut parent, o), find(&mut parent, k));
+                        parent[a] = b;
+                    }
+                }
+            }
+        }
+        grid.entry((cx, cy)).or_default().push(k);
+    }
+    (0..points.len()).filter(|&k| find(&mut parent, k) == k).count()
+}
+
+/// The closed loops of a DXF the command wrote (LWPOLYLINE with bulges, CIRCLE), scaled by
+/// `k` to millimetres.
+fn read_loops(text: &str, k: f64) -> Vec<Vec<El>> {
+    let lines: Vec<&str> = text.lines().map(str::trim).collect();
+    let pairs: Vec<(i32, &str)> = lines
+        .chunks(2)
+        .filter_map(|c| Some((c.first()?.parse().ok()?, *c.get(1)?)))
+        .collect();
+    let mut loops = Vec::new();
+    let mut i = 0;
+    while i < pairs.len() {
+        let kind = pairs[i];
+        i += 1;
+        if kind.0 != 0 || !(kind.1 == "LWPOLYLINE" || kind.1 == "CIRCLE") {
+            continue;
+        }
+        let mut pts: Vec<(f64, f64, f64)> = Vec::new();
+        let (mut x, mut r) = (0.0, 0.0);
+        let mut centre = (0.0, 0.0);
+        while i < pairs.len() && pairs[i].0 != 0 {
+            let (code, v) = pairs[i];
+            let v: f64 = v.parse().unwrap_or(0.0);
+            match code {
+                10 => x = v,
+                20 => {
+                    pts.push((x * k, v * k, 0.0));
+                    centre = (x * k, v * k);
+                }
+                40 => r = v * k,
+                42 => {
+                    if let Some(last) = pts.last_mut() {
+                        last.2 = v;
+                    }
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        loops.push(if kind.1 == "CIRCLE" {
+            circle(centre, r)
+        } else {
+            bulged(&pts)
+        });
+    }
+    loops
+}
+
+/// Runs `pocketeer offset` on the case and judges its loops.
+fn judge(case: &Case, dir: &Path) {
+    let input = dir.join(format!("{}.dxf", case.name));
+    let output = dir.join(format!("{}-loops.dxf", case.name));
+    std::fs::write(&input, case.dxf()).unwrap();
+    let res = Command::new(env!("CARGO_BIN_EXE_pocketeer"))
+        .args([
+            "offset",
+            input.to_str().unwrap(),
+            "--distance",
+            &format!("{}mm", case.d),
+        ])
+        .args(["-o", output.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        res.status.success(),
+        "{}: {}",
+        case.name,
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let loops = read_loops(&std::fs::read_to_string(&output).unwrap(), case.mm());
+    let region = Region::new(&case.profile_mm());
+    let (d, step) = (case.d, 0.1);
+    // Every point of every loop on the true boundary: at distance d, inside the region.
+    for l in &loops {
+        for p in l.iter().flat_map(|e| e.samples(step)) {
+            let dist = region.distance(p);
+            assert!(
+                (dist - d).abs() <= 1e-5,
+                "{}: loop point {p:?} at {dist} from the profile, not {d}",
+                case.name
+            );
+            assert!(
+                region.contains(p),
+                "{}: loop point {p:?} outside the region",
+                case.name
+            );
+        }
+    }
+    // Every point of the true boundary on a loop.
+    let truth = true_boundary(&region, d, step);
+    for &p in &truth {
+        let off = loops
+            .iter()
+            .flatten()
+            .map(|e| e.distance(p))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            off <= 1e-5,
+            "{}: boundary point {p:?} is {off} from every loop",
+            case.name
+        );
+    }
+    assert_eq!(
+        groups(&truth, 2.5 * step),
+        loops.len(),
+        "{}: loop count",
+        case.name
+    );
+}
+
+fn star(c: P, points: usize, outer: f64, inner: f64) -> Vec<El> {
+    let pts: Vec<(f64, f64, f64)> = (0..2 * points)
+        .map(|k| {
+            let a = PI / 2.0 + k as f64 * PI / points as f64;
+            let r = if k % 2 == 0 { outer } else { inner };
+            let p = polar(c, r, a);
+            (p.0, p.1, 0.0)
+        })
+        .collect();
+    bulged(&pts)
+}
+
+fn gear(c: P, teeth: usize, root: f64, tip: f64) -> Vec<El> {
+    // Trapezoid teeth: root arc, flank, tip arc, flank, counter-clockwise.
+    let pitch = TAU / teeth as f64;
+    let bulge = |sweep: f64| (sweep / 4.0).tan();
+    let mut pts = Vec::new();
+    for k in 0..teeth {
+        let a = k as f64 * pitch;
+        for (r, from, sweep) in [(root, 0.0, 0.4), (tip, 0.5, 0.3)] {
+            let p = polar(c, r, a + from * pitch);
+            pts.push((p.0, p.1, bulge(sweep * pitch)));
+            let p = polar(c, r, a + (from + sweep) * pitch);
+            pts.push((p.0, p.1, 0.0));
+        }
+    }
+    bulged(&pts)
+}
+
+fn cases() -> Vec<Case> {
+    let shuffled = vec![
+        (rounded(0.0, 0.0, 120.0, 80.0, 10.0), 1),
+        (circle((60.0, 40.0), 12.0), -1),
+    ];
+    let far: Vec<(Vec<El>, i32)> = shuffled
+        .iter()
+        .map(|(els, s)| {
+            let shift = (1e5, 1e5);
+            let els = els
+                .iter()
+                .map(|el| match *el {
+                    El::Line(p, q) => El::Line(add(p, shift), add(q, shift)),
+                    El::Arc { c, r, a0, sweep } => El::Arc {
+                        c: add(c, shift),
+                        r,
+                        a0,
+                        sweep,
+                    },
+                })
+                .collect();
+            (els, *s)
+        })
+        .collect();
+    let mut islands60: Vec<(Vec<El>, i32)> = vec![(rounded(0.0, 0.0, 200.0, 120.0, 6.0), 1)];
+    for i in 0..10 {
+        for j in 0..6 {
+            islands60.push((circle((15.0 + 19.0 * i as f64, 13.0 + 19.0 * j as f64), 5.0), -1));
+        }
+    }
+    let mm = |name, contours, style, d| Case {
+        name,
+        contours,
+        style,
+        insunits: 4,
+        d,
+    };
+    vec![
+        mm("shuffled", shuffled, Style::Shuffled, 3.0),
+        mm("far", far, Style::Shuffled, 3.0),
+        mm(
+            "bulged",
+            vec![
+                (
+                    bulged(&[
+                        (0.0, 0.0, 0.0),
+                        (80.0, 0.0, 0.6),
+                        (80.0, 50.0, 0.0),
+                        (0.0, 50.0, -0.3),
+                    ]),
+                    1,
+                ),
+                (
+                    bulged(&[
+                        (20.0, 20.0, 1.0),
+                        (35.0, 20.0, 0.0),
+                        (35.0, 30.0, 1.0),
+                        (20.0, 30.0, 0.0),
+                    ]),
+                    -1,
+                ),
+            ],
+            Style::Polylines,
+            2.5,
+        ),
+        mm(
+            "star",
+            vec![(star((0.0, 0.0), 7, 50.0, 20.0), 1)],
+            Style::Polylines,
+            2.0,
+        ),
+        mm(
+            "channels",
+            vec![(
+                bulged(&[
+                    (0.0, 0.0, 0.0),
+                    (60.0, 0.0, 0.0),
+                    (60.0, 10.0, 0.0),
+                    (55.0, 10.0, 0.0),
+                    (55.0, 40.0, 0.0),
+                    (50.0, 40.0, 0.0),
+                    (50.0, 10.0, 0.0),
+                    (30.0, 10.0, 0.0),
+                    (30.0, 40.0, 0.0),
+                    (26.1, 40.0, 0.0),
+                    (26.1, 10.0, 0.0),
+                    (0.0, 10.0, 0.0),
+                ]),
+                1,
+            )],
+            Style::Shuffled,
+            2.0,
+        ),
+        mm(
+            "bar",
+            vec![
+                (rect(0.0, 0.0, 100.0, 60.0), 1),
+                (rect(3.0, 28.0, 97.0, 32.0), -1),
+            ],
+            Style::Polylines,
+            3.0,
+        ),
+        mm(
+            "fillets",
+            vec![
+                (rounded(0.0, 0.0, 70.0, 40.0, 1.0), 1),
+                (rounded(20.0, 12.0, 50.0, 28.0, 0.8), -1),
+            ],
+            Style::Shuffled,
+            3.0,
+        ),
+        mm(
+            "gear",
+            vec![
+                (gear((0.0, 0.0), 24, 40.0, 46.0), 1),
+                (circle((0.0, 0.0), 10.0), -1),
+            ],
+            Style::Polylines,
+            1.5,
+        ),
+        mm("islands60", islands60, Style::Polylines, 2.0),
+        mm(
+            "pocket_in_island",
+            vec![
+                (rect(0.0, 0.0, 100.0, 100.0), 1),
+                (rect(20.0, 20.0, 80.0, 80.0), -1),
+                (rect(35.0, 35.0, 65.0, 65.0), 1),
+            ],
+            Style::Polylines,
+            2.0,
+        ),
+        mm(
+            "overlapping_islands",
+            vec![
+                (rect(0.0, 0.0, 100.0, 60.0), 1),
+                (circle((40.0, 30.0), 12.0), -1),
+                (circle((55.0, 30.0), 10.0), -1),
+            ],
+            Style::Polylines,
+            2.0,
+        ),
+        mm(
+            "island_near_wall",
+            vec![(rect(0.0, 0.0, 100.0, 60.0), 1), (circle((50.0, 10.5), 10.0), -1)],
+            Style::Polylines,
+            3.0,
+        ),
+        mm(
+            "arcs_only",
+            vec![(
+                bulged(&[
+                    (0.0, 0.0, 0.3),
+                    (60.0, 0.0, 0.3),
+                    (60.0, 40.0, 0.3),
+                    (0.0, 40.0, 0.3),
+                ]),
+                1,
+            )],
+            Style::Shuffled,
+            3.0,
+        ),
+        mm(
+            "wider_than_the_pocket",
+            vec![(rounded(0.0, 0.0, 120.0, 80.0, 10.0), 1)],
+            Style::Polylines,
+            45.0,
+        ),
+        Case {
+            name: "inch",
+            contours: vec![
+                (rounded(0.0, 0.0, 4.0, 3.0, 0.25), 1),
+                (circle((2.0, 1.5), 0.5), -1),
+            ],
+            style: Style::Polylines,
+            insunits: 1,
+            d: 3.0,
+        },
+    ]
+}
+
+#[test]
+fn offsets_of_the_judged_kinds_of_drawing_match_an_independent_erosion() {
+    let dir = tempfile::tempdir().unwrap();
+    for case in cases() {
+        judge(&case, dir.path());
+        // And at two more distances, odd ones, smaller and larger.
+        for k in [0.371, 1.913] {
+            judge(
+                &Case {
+                    d: case.d * k,
+                    contours: case.contours.clone(),
+                    ..case
+                },
+                dir.path(),
+            );
+        }
+    }
+}
