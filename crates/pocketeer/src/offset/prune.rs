@@ -1,6 +1,7 @@
 //! Throwing away invalid pieces (paper §6): a piece is kept only when it is nowhere closer than
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
+use super::split::TOUCH;
 use crate::geom::PieceGraph;
 use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
 use crate::union_find::UnionFind;
@@ -16,9 +17,11 @@ const JOIN_SLACK: f64 = 1e-5;
 pub const MAX_MEASURES: u64 = 40_000_000;
 
 /// How far inside `d` a piece may come and still count as at distance `d`: exact offset
-/// pieces are at distance d up to rounding, far below ten epsilons.
+/// pieces are at distance d up to rounding, far below ten epsilons; where offset curves
+/// touch or run together to within [`TOUCH`] the split took them as meeting, and the pieces
+/// there are as far inside d as the curves are apart.
 pub fn slack(d: f64, tol: &Tolerance) -> f64 {
-    (10.0 * tol.eps).min(1e-3 * d)
+    (10.0 * tol.eps).max(TOUCH).min(1e-3 * d)
 }
 
 /// The original profile, indexed for distance queries.

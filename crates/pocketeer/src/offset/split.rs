@@ -12,6 +12,14 @@ pub type Nodes = UnionFind;
 /// A cut: where on the piece (parameter), which node, and the point.
 type Cut = (f64, usize, Point);
 
+/// Distance (mm) within which two raw offset curves count as meeting: they touch where they
+/// come this near, and run together where they stay this near. Offsets of walls drawn exactly
+/// 2d apart coincide only to the precision of the drawing (a DXF written to six decimals puts
+/// them up to a micrometre apart): a crossing missed there leaves a piece that is valid along
+/// part of its length and judged whole, and loses the loop it bounds. Pieces cut at such a
+/// touch stay within this distance of the offset, inside the accuracy of 1e-6 mm.
+pub const TOUCH: f64 = 5e-7;
+
 /// How far [`split`] got before giving up.
 #[derive(Debug, Clone, Copy)]
 pub struct Overrun {
@@ -37,6 +45,7 @@ pub fn split(
     budget: (u64, usize),
 ) -> Result<Vec<Piece>, Overrun> {
     let near_end = 10.0 * tol.eps;
+    let touch = tol.eps.max(TOUCH);
     // A piece shorter than that is a point where the pieces before and after it meet: its
     // ends become one node.
     let long: Vec<Piece>;
@@ -72,7 +81,7 @@ pub fn split(
         }
     };
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
-        let hits = intersect(&pieces[i].segment, &pieces[j].segment, tol.eps);
+        let hits = intersect(&pieces[i].segment, &pieces[j].segment, touch);
         for h in hits.iter() {
             let (first, second) = match h {
                 Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
