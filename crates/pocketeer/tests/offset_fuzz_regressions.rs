@@ -746,3 +746,23 @@ fn a_round_end_of_radius_d_at_the_tip_of_a_wedge() {
         0,
     );
 }
+
+/// Found by the thirteenth run (held to 1e-6): a triangle 164 mm long and 0.02 mm high, whose
+/// inscribed circle has radius d = 0.01 to within 1e-9. The top edges' offsets end at the apex's
+/// offset, 3e-10 mm below the bottom edge's offset, meeting it at 2.4e-4 rad; the crossing of
+/// their carriers lies 1.2e-6 mm beyond that end, and the line intersection, trying only that
+/// crossing, found none. Unsplit, the whole raw ring was one run, judged valid by the middle
+/// of the bottom's offset, which is the apex's: a loop round the outside of the triangle,
+/// through its walls. An end on the other line now meets it where it projects: nothing is left.
+#[test]
+fn a_sliver_triangle_whose_inscribed_circle_has_radius_d() {
+    let boundary = imported_as_drawn(&[(24417, 0, 0), (8033, 0, 0), (16225, 2, 0)]);
+    let loops = check(
+        &Pocket {
+            boundary,
+            islands: vec![],
+        },
+        0,
+    );
+    assert!(loops.is_empty(), "{loops:?}");
+}

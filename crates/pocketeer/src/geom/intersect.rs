@@ -156,25 +156,26 @@ pub fn line_line(l1: &Line, l2: &Line, eps: f64) -> Intersections {
     {
         return out;
     }
-    // Where l2 crosses the line of l1 and l1 the line of l2, snapped to an end that lies on
-    // the other line. Lines meeting at a small angle can have an end within eps of the other
-    // line far from where they cross (h / sin of the angle): then the snapped points do not
-    // meet, and the crossing computed without snapping is the one.
-    let snapped = |h0: f64, h1: f64| {
+    // An end of one line that lies on the other (within eps), meeting it where it projects:
+    // lines meeting at a small angle can have an end within eps of the other line far from
+    // where their carriers cross (h / sin of the angle), beyond the end. Failing that, the
+    // crossing of the carriers.
+    let end_on = |h0: f64, h1: f64| {
         if h0.abs() <= eps {
-            0.0
+            Some(0.0)
         } else if h1.abs() <= eps {
-            1.0
+            Some(1.0)
         } else {
-            clamp01(h0 / (h0 - h1))
+            None
         }
     };
     let crossing = |h0: f64, h1: f64| clamp01(h0 / (h0 - h1));
     let candidates = [
-        (snapped(ha, hb), snapped(hc, hd)),
-        (crossing(ha, hb), crossing(hc, hd)),
+        end_on(ha, hb).map(|t| (t, clamp01(l2.param_of(l1.point_at(t))))),
+        end_on(hc, hd).map(|u| (clamp01(l1.param_of(l2.point_at(u))), u)),
+        Some((crossing(ha, hb), crossing(hc, hd))),
     ];
-    for (t, u) in candidates {
+    for (t, u) in candidates.into_iter().flatten() {
         let pa = l1.point_at(t);
         let pb = l2.point_at(u);
         if pa.distance(pb) <= 2.0 * eps {
@@ -457,6 +458,26 @@ mod tests {
     fn vertical_and_horizontal_lines_cross() {
         let hits = intersect(&line(5.0, -1.0, 5.0, 1.0), &line(0.0, 0.0, 10.0, 0.0), EPS);
         assert_eq!(hits.len(), 1);
+    }
+
+    #[test]
+    fn an_end_on_the_other_line_at_a_shallow_angle_meets_it_where_it_projects() {
+        // The end of the rising line lies 3e-10 below the horizontal one (within eps); their
+        // carriers cross 1.2e-6 beyond that end, too far to snap to (offsets of a triangle
+        // 0.02 high and 164 long, found by fuzzing).
+        let rising = line(244.17, -0.01, 162.25, 0.01 - 3e-10);
+        let flat = line(80.33, 0.01, 244.17, 0.01);
+        for (a, b, swapped) in [(&rising, &flat, false), (&flat, &rising, true)] {
+            let v: Vec<_> = intersect(a, b, EPS).iter().collect();
+            assert_eq!(v.len(), 1, "{v:?}");
+            let Intersection::Point { point, ta, tb } = v[0] else {
+                panic!("expected a point")
+            };
+            let (t_rising, t_flat) = if swapped { (tb, ta) } else { (ta, tb) };
+            assert_eq!(t_rising, 1.0);
+            assert!((t_flat - (162.25 - 80.33) / 163.84).abs() < 1e-12);
+            assert!(point.distance(Point::new(162.25, 0.01)) < 1e-9);
+        }
     }
 
     #[test]

@@ -8,12 +8,15 @@
 //!
 //! Accuracy: the loops are made of exact lines and arcs, and every point of them lies at
 //! distance d from the profile within 1e-6 · max(d, 1 mm) (the property tests and the offset
-//! fuzz target check it piece by piece). Where raw offset curves meet tangentially to within
-//! rounding, around elements a few micrometres across or an arc of radius d, the split may
-//! find no crossing to cut at: a joining chord coming less than `JOIN_SLACK` (1e-5 mm) inside
-//! d stays in its run so that the loop it closes is not lost, and stitching closes a loop
-//! wherever its walk comes back to a node it passed, so that a detour through such a chord
-//! beyond the true meeting point is a sliver loop of its own and goes.
+//! fuzz target check it piece by piece). Raw offset curves that come within `TOUCH` (5e-7 mm,
+//! in `split.rs`) of each other are taken as meeting there, and pieces that far inside d as at
+//! d: offsets of walls drawn exactly 2d apart coincide only to the precision of the drawing.
+//! Where raw offset curves meet tangentially to within rounding, around elements a few
+//! micrometres across or an arc of radius d, the split may find no crossing to cut at: a
+//! joining chord coming less than `JOIN_SLACK` (1e-5 mm) inside d stays in its run so that the
+//! loop it closes is not lost, and stitching closes a loop wherever its walk comes back to a
+//! node it passed, so that a detour through such a chord beyond the true meeting point is a
+//! sliver loop of its own and goes.
 
 mod clip;
 mod levels;
