@@ -62,10 +62,7 @@ pub fn split(
     } else {
         pieces
     };
-    let boxes: Vec<Aabb> = pieces
-        .iter()
-        .map(|p| p.segment.bbox().inflated(tol.eps))
-        .collect();
+    let boxes: Vec<Aabb> = pieces.iter().map(|p| p.segment.bbox().inflated(touch)).collect();
     // All cuts in one list, (piece, cut), sorted afterwards: far fewer allocations than a
     // list per piece.
     let mut cuts: Vec<(usize, Cut)> = Vec::new();
