@@ -65,7 +65,9 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
         loop {
             let node = pieces[chain[chain.len() - 1]].end;
             let at = passed[node];
-            if at != usize::MAX {
+            // (An entry is only trusted while it still names a piece of this chain leaving the
+            // node: after a loop closed at `at`, the node stays marked for the piece to come.)
+            if at < chain.len() && pieces[chain[at]].start == node {
                 loops.push(Contour::new(
                     chain[at..].iter().map(|&k| pieces[k].segment).collect(),
                 ));
@@ -102,6 +104,7 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
                     for &k in &chain {
                         passed[pieces[k].start] = usize::MAX;
                     }
+                    passed[node] = usize::MAX;
                     break;
                 }
             }
