@@ -78,7 +78,12 @@ pub fn split(
         }
     };
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
-        let hits = intersect(&pieces[i].segment, &pieces[j].segment, touch);
+        // Pieces joined end to start are one offset curve going on (tangent where an element
+        // runs smoothly into the next): near their node they stay within TOUCH of each other
+        // for a while without meeting, and only rounding decides their crossings.
+        let (a, b) = (&pieces[i], &pieces[j]);
+        let joined = nodes.find(a.end) == nodes.find(b.start) || nodes.find(b.end) == nodes.find(a.start);
+        let hits = intersect(&a.segment, &b.segment, if joined { tol.eps } else { touch });
         for h in hits.iter() {
             let (first, second) = match h {
                 Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
