@@ -344,7 +344,7 @@ fn erode(
         MAX_BOX_TESTS,
         MAX_CROSSINGS.min(QUADRATIC_CROSSINGS * raw.len() + 100_000),
     );
-    let pieces = match split(&raw, &mut nodes, tol, first_budget) {
+    let pieces = match split(&raw, &mut nodes, tol, first_budget, elements) {
         Ok(pieces) => pieces,
         Err(first) => {
             // Too many crossings: most lie in parts of pieces that are invalid anyway.
@@ -361,7 +361,7 @@ fn erode(
             };
             let clipped = clip::clip_invalid(&raw, profile, d, prune::slack(d, tol), &mut nodes)
                 .ok_or_else(|| too_complex(&raw, first))?;
-            split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
+            split(&clipped, &mut nodes, tol, budget, elements).map_err(|o| too_complex(&clipped, o))?
         }
     };
     // Canonical node ids; pieces shorter than rounding go (their ends are one node).

@@ -43,6 +43,7 @@ pub fn split(
     nodes: &mut Nodes,
     tol: &Tolerance,
     budget: (u64, usize),
+    elements: usize,
 ) -> Result<Vec<Piece>, Overrun> {
     let near_end = 10.0 * tol.eps;
     let touch = tol.eps.max(TOUCH);
@@ -77,13 +78,25 @@ pub fn split(
             None
         }
     };
+    // Each piece's end nodes as united so far (dropped points join their neighbours).
+    let ends: Vec<(usize, usize)> = pieces
+        .iter()
+        .map(|p| (nodes.find(p.start), nodes.find(p.end)))
+        .collect();
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
         // Pieces joined end to start are one offset curve going on (tangent where an element
         // runs smoothly into the next): near their node they stay within TOUCH of each other
         // for a while without meeting, and only rounding decides their crossings.
-        let (a, b) = (&pieces[i], &pieces[j]);
-        let joined = nodes.find(a.end) == nodes.find(b.start) || nodes.find(b.end) == nodes.find(a.start);
-        let hits = intersect(&a.segment, &b.segment, if joined { tol.eps } else { touch });
+        let (a, b) = (ends[i], ends[j]);
+        let joined = a.1 == b.0 || b.1 == a.0;
+        // Likewise pieces of one element or of neighbouring ones (a joint's pieces count as
+        // their element's): where the profile runs on smoothly their offsets stay near each
+        // other for a while. Walls drawn 2d apart are further apart along the profile.
+        let element = |source: u32| (source as usize) % elements.max(1);
+        let (ea, eb) = (element(pieces[i].source), element(pieces[j].source));
+        let neighbours = ea.abs_diff(eb) <= 1;
+        let tolerance = if joined || neighbours { tol.eps } else { touch };
+        let hits = intersect(&pieces[i].segment, &pieces[j].segment, tolerance);
         for h in hits.iter() {
             let (first, second) = match h {
                 Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
