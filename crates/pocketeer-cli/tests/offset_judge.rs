@@ -12,8 +12,10 @@
 //! (the other way), and the samples must fall into as many connected groups as there are loops.
 //! Samples from which no step goes deeper than d are left out: where walls lie exactly 2d
 //! apart the points between are at distance d but bound no area, and the offset drops them.
-//! The geometry, distances and region test here are written for this test alone.
+//! The geometry, distances and region test here are written for this test alone; only the
+//! grouping of samples uses the library (`geom::cluster_points`, which the offset does not).
 
+use pocketeer::geom::Point;
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 use std::process::Command;
@@ -89,6 +91,20 @@ impl El {
                     len(sub(p, self.start())).min(len(sub(p, self.end())))
                 }
             }
+        }
+    }
+    /// The element scaled by `k`, turned by `angle` round the origin, then moved by `shift`.
+    fn placed(&self, k: f64, angle: f64, shift: P) -> El {
+        let (c, s) = (angle.cos(), angle.sin());
+        let at = |(x, y): P| add((k * (x * c - y * s), k * (x * s + y * c)), shift);
+        match *self {
+            El::Line(p, q) => El::Line(at(p), at(q)),
+            El::Arc { c, r, a0, sweep } => El::Arc {
+                c: at(c),
+                r: r * k,
+                a0: a0 + angle,
+                sweep,
+            },
         }
     }
     /// Points along the element at most `step` apart, ends included.
@@ -266,26 +282,16 @@ impl Case {
 
     /// The profile in millimetres, with each contour's sign.
     fn profile_mm(&self) -> Vec<(Vec<El>, i32)> {
-        let k = self.mm();
-        self.contours
-            .iter()
-            .map(|(els, sign)| {
-                let els = els
-                    .iter()
-                    .map(|el| match *el {
-                        El::Line(p, q) => El::Line(mul(p, k), mul(q, k)),
-                        El::Arc { c, r, a0, sweep } => El::Arc {
-                            c: mul(c, k),
-                            r: r * k,
-                            a0,
-                            sweep,
-                        },
-                    })
-                    .collect();
-                (els, *sign)
-            })
-            .collect()
+        placed(&self.contours, self.mm(), 0.0, (0.0, 0.0))
     }
+}
+
+/// Every element of `contours` [`El::placed`].
+fn placed(contours: &[(Vec<El>, i32)], k: f64, angle: f64, shift: P) -> Vec<(Vec<El>, i32)> {
+    contours
+        .iter()
+        .map(|(els, sign)| (els.iter().map(|el| el.placed(k, angle, shift)).collect(), *sign))
+        .collect()
 }
 
 /// The region to erode: the profile's elements, and each contour flattened (chords within
@@ -401,33 +407,13 @@ fn true_boundary(region: &Region, d: f64, step: f64) -> Vec<P> {
         .collect()
 }
 
-/// The number of groups the points fall into, points nearer than `r` joining a group.
+/// The number of groups the points fall into, points within `r` joining a group.
 fn groups(points: &[P], r: f64) -> usize {
-    let mut parent: Vec<usize> = (0..points.len()).collect();
-    fn find(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    let cell = |p: P| ((p.0 / r).floor() as i64, (p.1 / r).floor() as i64);
-    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> = std::collections::HashMap::new();
-    for (k, &p) in points.iter().enumerate() {
-        let (cx, cy) = cell(p);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for &o in grid.get(&(cx + dx, cy + dy)).map(Vec::as_slice).unwrap_or(&[]) {
-                    if len(sub(points[o], p)) < r {
-                        let (a, b) = (find(&mut parent, o), find(&mut parent, k));
-                        parent[a] = b;
-                    }
-                }
-            }
-        }
-        grid.entry((cx, cy)).or_default().push(k);
-    }
-    (0..points.len()).filter(|&k| find(&mut parent, k) == k).count()
+    let points: Vec<Point> = points.iter().map(|&(x, y)| Point::new(x, y)).collect();
+    let mut ids = pocketeer::geom::cluster_points(&points, r);
+    ids.sort_unstable();
+    ids.dedup();
+    ids.len()
 }
 
 /// The closed loops of a DXF the command wrote (LWPOLYLINE with bulges, CIRCLE), scaled by
@@ -579,38 +565,14 @@ fn gear(c: P, teeth: usize, root: f64, tip: f64) -> Vec<El> {
 /// of them and a small round island, all turned by 0.3 rad so that no coordinate is exact:
 /// offsets that coincide to within the precision of a drawing.
 fn near_2d(gap: f64) -> Vec<(Vec<El>, i32)> {
-    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
-    let turn = |(x, y): P| (x * c - y * s, x * s + y * c);
-    let poly = |pts: &[(f64, f64, f64)]| {
-        let pts: Vec<(f64, f64, f64)> = pts
-            .iter()
-            .map(|&(x, y, b)| {
-                let (u, v) = turn((x, y));
-                (u, v, b)
-            })
-            .collect();
-        bulged(&pts)
-    };
-    let b = (PI / 8.0).tan();
-    let rounded = |x0: f64, y0: f64, x1: f64, y1: f64, r: f64| {
-        poly(&[
-            (x0 + r, y0, 0.0),
-            (x1 - r, y0, b),
-            (x1, y0 + r, 0.0),
-            (x1, y1 - r, b),
-            (x1 - r, y1, 0.0),
-            (x0 + r, y1, b),
-            (x0, y1 - r, 0.0),
-            (x0, y0 + r, b),
-        ])
-    };
     let w = 6.0 + gap;
-    vec![
+    let upright = [
         (rounded(0.0, 0.0, 100.0, 60.0, 2.0), 1),
         (rounded(w, 8.0, 40.0, 30.0, 2.0), -1),
         (rounded(40.0 + w, 20.0, 70.0, 45.0, 2.0), -1),
-        (circle(turn((44.0, 36.0)), 0.45), -1),
-    ]
+        (circle((44.0, 36.0), 0.45), -1),
+    ];
+    placed(&upright, 1.0, 0.3, (0.0, 0.0))
 }
 
 fn cases() -> Vec<Case> {
@@ -618,25 +580,7 @@ fn cases() -> Vec<Case> {
         (rounded(0.0, 0.0, 120.0, 80.0, 10.0), 1),
         (circle((60.0, 40.0), 12.0), -1),
     ];
-    let far: Vec<(Vec<El>, i32)> = shuffled
-        .iter()
-        .map(|(els, s)| {
-            let shift = (1e5, 1e5);
-            let els = els
-                .iter()
-                .map(|el| match *el {
-                    El::Line(p, q) => El::Line(add(p, shift), add(q, shift)),
-                    El::Arc { c, r, a0, sweep } => El::Arc {
-                        c: add(c, shift),
-                        r,
-                        a0,
-                        sweep,
-                    },
-                })
-                .collect();
-            (els, *s)
-        })
-        .collect();
+    let far = placed(&shuffled, 1.0, 0.0, (1e5, 1e5));
     let mut islands60: Vec<(Vec<El>, i32)> = vec![(rounded(0.0, 0.0, 200.0, 120.0, 6.0), 1)];
     for i in 0..10 {
         for j in 0..6 {

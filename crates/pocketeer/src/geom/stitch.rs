@@ -52,7 +52,8 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
     let mut loops = Vec::new();
     let mut lost = 0;
     let mut chain: Vec<usize> = Vec::new();
-    // Where in `chain` the piece leaving each node the walk passed is.
+    // Where in `chain` the piece leaving each node the walk passed is (stale entries are
+    // told by the check below, never cleared).
     let mut passed: Vec<usize> = vec![usize::MAX; graph.nodes()];
     for start in 0..pieces.len() {
         if used[start] {
@@ -64,19 +65,16 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
         passed[pieces[start].start] = 0;
         loop {
             let node = pieces[chain[chain.len() - 1]].end;
+            // An entry counts only while it names a piece of this walk leaving the node: marks
+            // left by earlier walks, or by loops closed since, name none (every push marks
+            // its node afresh, and a walk passes a node once before closing there).
             let at = passed[node];
-            // (An entry is only trusted while it still names a piece of this chain leaving the
-            // node: after a loop closed at `at`, the node stays marked for the piece to come.)
             if at < chain.len() && pieces[chain[at]].start == node {
                 loops.push(Contour::new(
                     chain[at..].iter().map(|&k| pieces[k].segment).collect(),
                 ));
-                for &k in &chain[at + 1..] {
-                    passed[pieces[k].start] = usize::MAX;
-                }
                 chain.truncate(at);
                 if at == 0 {
-                    passed[node] = usize::MAX;
                     break;
                 }
             }
@@ -101,10 +99,6 @@ pub(crate) fn stitch_kept(pieces: &[Piece], graph: &PieceGraph, kept: &[bool]) -
                 }
                 None => {
                     lost += chain.len();
-                    for &k in &chain {
-                        passed[pieces[k].start] = usize::MAX;
-                    }
-                    passed[node] = usize::MAX;
                     break;
                 }
             }

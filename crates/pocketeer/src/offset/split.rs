@@ -32,7 +32,9 @@ pub struct Overrun {
 }
 
 /// Cuts every piece where it meets another. Pieces meeting at a cut share its node; a cut at a
-/// piece's end is that end's node.
+/// piece's end is that end's node. Pieces of elements that are not neighbours (sources as
+/// [`super::raw::raw_offset`] numbers them, `elements` in all) also meet where they come
+/// within [`TOUCH`].
 ///
 /// Gives up when finding the pairs to intersect would take more than `budget.0` box
 /// comparisons or the pieces cross more than `budget.1` times (pieces overlapping by the
@@ -78,10 +80,14 @@ pub fn split(
             None
         }
     };
-    // Each piece's end nodes as united so far (dropped points join their neighbours).
-    let ends: Vec<(usize, usize)> = pieces
+    // Each piece's end nodes as united so far (dropped points join their neighbours) and its
+    // element (a joint's pieces count as their element's).
+    let ends: Vec<(usize, usize, usize)> = pieces
         .iter()
-        .map(|p| (nodes.find(p.start), nodes.find(p.end)))
+        .map(|p| {
+            let element = p.source as usize % elements.max(1);
+            (nodes.find(p.start), nodes.find(p.end), element)
+        })
         .collect();
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
         // Pieces joined end to start are one offset curve going on (tangent where an element
@@ -89,12 +95,10 @@ pub fn split(
         // for a while without meeting, and only rounding decides their crossings.
         let (a, b) = (ends[i], ends[j]);
         let joined = a.1 == b.0 || b.1 == a.0;
-        // Likewise pieces of one element or of neighbouring ones (a joint's pieces count as
-        // their element's): where the profile runs on smoothly their offsets stay near each
-        // other for a while. Walls drawn 2d apart are further apart along the profile.
-        let element = |source: u32| (source as usize) % elements.max(1);
-        let (ea, eb) = (element(pieces[i].source), element(pieces[j].source));
-        let neighbours = ea.abs_diff(eb) <= 1;
+        // Likewise pieces of one element or of neighbouring ones: where the profile runs on
+        // smoothly their offsets stay near each other for a while. Walls drawn 2d apart are
+        // further apart along the profile.
+        let neighbours = a.2.abs_diff(b.2) <= 1;
         let tolerance = if joined || neighbours { tol.eps } else { touch };
         let hits = intersect(&pieces[i].segment, &pieces[j].segment, tolerance);
         for h in hits.iter() {
