@@ -16,10 +16,7 @@
 //! joining chord coming less than `JOIN_SLACK` (1e-5 mm) inside d stays in its run so that the
 //! loop it closes is not lost, and stitching closes a loop wherever its walk comes back to a
 //! node it passed, so that a detour through such a chord beyond the true meeting point is a
-//! sliver loop of its own and goes. One case found by fuzzing is open: an outline that the
-//! importer lets touch itself at a vertex (two lenses meeting at their tips) gives, besides
-//! the right loops, a small clockwise loop at the pinch nearer than d to the walls (ignored
-//! test `an_outline_touching_itself_at_a_vertex`).
+//! sliver loop of its own and goes.
 
 mod clip;
 mod levels;
