@@ -518,12 +518,14 @@ fn an_arc_a_hair_wider_than_d_crossing_its_neighbour_near_their_joint() {
 }
 
 /// Found by the ninth run: two circles (radius 115.3 and 48.5) drawn as four semicircles that
-/// touch at a neck 0.01 mm wide. The importer cuts the crossing of the big circle's two
-/// halves at its top and leaves there a line 1e-10 mm long pointing back against them. Moved
-/// to its left (out of the pocket) it put a node arc of radius d round each of its ends, and
-/// these semicircles outside the pocket, chained to the valid moved arcs without a crossing,
-/// were kept: points 2.05 mm from the walls at d = 21.855. Lines shorter than rounding are now
-/// points to the raw offset, their neighbours meeting across them.
+/// touch at a neck 0.01 mm wide. The importer cut the crossing of the big circle's two halves
+/// at its top and left there a line 1e-10 mm long pointing back against them. Moved to its
+/// left (out of the pocket) it put a node arc of radius d round each of its ends, and these
+/// semicircles outside the pocket, chained to the valid moved arcs without a crossing, were
+/// kept: points 2.05 mm from the walls at d = 21.855. Lines shorter than rounding are now
+/// points to the raw offset, their neighbours meeting across them. Since arcs ending within
+/// eps of another meet it there, the importer cuts that crossing at the arcs' ends and leaves
+/// no such line: both its outline and that outline with the line put back are offset.
 #[test]
 fn a_line_shorter_than_rounding_pointing_back_is_a_point() {
     let v = [
@@ -533,25 +535,35 @@ fn a_line_shorter_than_rounding_pointing_back_is_a_point() {
         (21846, -16299, -128),
         (21845, -6593, -128),
     ];
-    let boundary = imported_as_drawn(&v);
-    let shortest = boundary
+    let imported = imported_as_drawn(&v);
+    // The big circle's halves meet at its top: the line there, pointing back (+x) against
+    // them, as the importer left it.
+    let top = imported
         .segments
         .iter()
-        .map(Segment::length)
-        .fold(f64::INFINITY, f64::min);
-    assert!(shortest < 1e-9, "the importer's output changed: {shortest}");
-    let loops = check(
-        &Pocket {
-            boundary,
-            islands: vec![],
-        },
-        21845,
+        .map(Segment::end)
+        .max_by(|a, b| a.y.total_cmp(&b.y))
+        .unwrap();
+    let k = imported.segments.iter().position(|s| s.end() == top).unwrap();
+    let mut with_line = imported.segments.clone();
+    with_line.insert(
+        k + 1,
+        Segment::Line(Line::new(top, Point::new(top.x + 1e-10, top.y))),
     );
-    // One loop in each circle: radius 115.31 - 21.855 and 48.53 - 21.855.
-    assert_eq!(loops.len(), 2);
-    let area: f64 = loops.iter().map(Contour::signed_area).sum();
-    let expected = std::f64::consts::PI * ((115.31f64 - 21.855).powi(2) + (48.53f64 - 21.855).powi(2));
-    assert!((area - expected).abs() < 2.0, "{area} against {expected}");
+    for boundary in [imported, Contour::new(with_line)] {
+        let loops = check(
+            &Pocket {
+                boundary,
+                islands: vec![],
+            },
+            21845,
+        );
+        // One loop in each circle: radius 115.31 - 21.855 and 48.53 - 21.855.
+        assert_eq!(loops.len(), 2);
+        let area: f64 = loops.iter().map(Contour::signed_area).sum();
+        let expected = std::f64::consts::PI * ((115.31f64 - 21.855).powi(2) + (48.53f64 - 21.855).powi(2));
+        assert!((area - expected).abs() < 2.0, "{area} against {expected}");
+    }
 }
 
 /// Found by the ninth run, and taken then for a node arc of radius d touched from inside by

@@ -4,7 +4,7 @@
 //! geometric epsilon `eps` in millimetres, so vertical lines and tiny or huge coordinates are
 //! treated alike.
 
-use super::{Arc, Line, Point, Segment};
+use super::{closest_param, point_distance, Arc, Line, Point, Segment};
 use std::f64::consts::TAU;
 
 /// One place where two segments meet.
@@ -273,10 +273,10 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
             }
         }
         if !out.is_empty() {
-            break;
+            return out;
         }
     }
-    out
+    end_on_other(&Segment::Line(*l), &Segment::Arc(*c), eps)
 }
 
 /// Newton steps on t for |l(t) - centre| = radius: the closed form loses precision when the
@@ -367,8 +367,40 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
             }
         }
         if !out.is_empty() {
-            break;
+            return out;
         }
+    }
+    end_on_other(&Segment::Arc(*c1), &Segment::Arc(*c2), eps)
+}
+
+/// Where the curves' crossings lie off the segments: an end of one within eps of the other
+/// meets it at its foot. Curves meeting at a shallow angle can have an end that near the
+/// other far beyond the end from where the curves cross (h / sin of the angle: 1.2e-6 mm for
+/// an end 3e-10 mm off at 2.4e-4 rad), too far for the crossing to count.
+fn end_on_other(a: &Segment, b: &Segment, eps: f64) -> Intersections {
+    let mut out = Intersections::default();
+    // Near the other's carrier first: a subtraction, where the distance to the segment
+    // takes an angle.
+    let near = |s: &Segment, p: Point| {
+        let off = match s {
+            Segment::Line(l) => l.signed_distance(p).abs(),
+            Segment::Arc(c) => (p.distance(c.center) - c.radius).abs(),
+        };
+        off <= eps && point_distance(s, p) <= eps
+    };
+    let ends = |s: &Segment| [(0.0, s.start()), (1.0, s.end())];
+    if let Some((ta, point)) = ends(a).into_iter().find(|&(_, p)| near(b, p)) {
+        out.push(Intersection::Point {
+            point,
+            ta,
+            tb: closest_param(b, point),
+        });
+    } else if let Some((tb, point)) = ends(b).into_iter().find(|&(_, p)| near(a, p)) {
+        out.push(Intersection::Point {
+            point,
+            ta: closest_param(a, point),
+            tb,
+        });
     }
     out
 }
@@ -458,6 +490,58 @@ mod tests {
     fn vertical_and_horizontal_lines_cross() {
         let hits = intersect(&line(5.0, -1.0, 5.0, 1.0), &line(0.0, 0.0, 10.0, 0.0), EPS);
         assert_eq!(hits.len(), 1);
+    }
+
+    /// A point 3e-10 outside the circle of radius 10 about the origin at (10, 0), and the
+    /// direction 2.4e-4 rad off its tangent, heading in: a curve arriving there along it
+    /// ends within eps of the circle, and would cross it 1.25e-6 further on.
+    fn shallow_arrival() -> (Point, Point, Arc) {
+        let alpha: f64 = 2.4e-4;
+        let end = Point::new(10.0 + 3e-10, 0.0);
+        let heading = Point::new(-alpha.sin(), alpha.cos());
+        let circle = Arc::new(Point::new(0.0, 0.0), 10.0, -0.5, 1.0);
+        (end, heading, circle)
+    }
+
+    #[test]
+    fn a_line_ending_on_an_arc_at_a_shallow_angle_meets_it_at_its_end() {
+        let (end, heading, circle) = shallow_arrival();
+        let start = Point::new(end.x - 5.0 * heading.x, end.y - 5.0 * heading.y);
+        let l = Line::new(start, end);
+        assert!(start.distance(circle.center) > 10.0);
+        for hits in [
+            line_arc(&l, &circle, EPS),
+            intersect(&Segment::Arc(circle), &Segment::Line(l), EPS).swapped(),
+        ] {
+            assert_eq!(hits.len(), 1, "{hits:?}");
+            let Some(Intersection::Point { point, ta, tb }) = hits.iter().next() else {
+                panic!("{hits:?}")
+            };
+            assert!(point.distance(end) < 1e-12 && ta == 1.0);
+            assert!(circle.point_at(tb).distance(end) < 1e-9);
+        }
+    }
+
+    #[test]
+    fn an_arc_ending_on_an_arc_at_a_shallow_angle_meets_it_at_its_end() {
+        let (end, heading, circle) = shallow_arrival();
+        // Radius 20, turning clockwise (away from the circle) as it arrives.
+        let centre = Point::new(end.x + 20.0 * heading.y, end.y - 20.0 * heading.x);
+        let at_end = (end - centre).angle();
+        let arriving = Arc::new(centre, 20.0, at_end + 0.2, -0.2);
+        assert!(arriving.end().distance(end) < 1e-12);
+        assert!(arriving.start().distance(circle.center) > 10.0);
+        for hits in [
+            arc_arc(&arriving, &circle, EPS),
+            arc_arc(&circle, &arriving, EPS).swapped(),
+        ] {
+            assert_eq!(hits.len(), 1, "{hits:?}");
+            let Some(Intersection::Point { point, ta, tb }) = hits.iter().next() else {
+                panic!("{hits:?}")
+            };
+            assert!(point.distance(end) < 1e-12 && ta == 1.0);
+            assert!(circle.point_at(tb).distance(end) < 1e-9);
+        }
     }
 
     #[test]
