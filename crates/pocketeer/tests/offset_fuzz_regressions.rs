@@ -817,3 +817,24 @@ fn a_neck_narrower_than_2d_between_two_lenses() {
     assert!(loops[0].is_ccw());
     assert!(loops[0].signed_area() > 8900.0);
 }
+
+/// Found by the eighteenth run: a line 327 mm long and, turning back at its top, an arc 5.1 mm
+/// long bulging 0.02 mm from it, a hairpin whose two sides are 2d apart to within 1e-7 mm
+/// at its widest (d = 0.01). Their offsets, pieces of neighbouring elements, come within
+/// TOUCH of each other there running opposite ways; intersected with eps they did not meet,
+/// and the run of the whole offset line, judged by its middle (at d), was kept with the
+/// node arcs round the hairpin's ends: a clockwise loop with points 0.0014 mm from the walls.
+/// Neighbours' offsets meeting within TOUCH running opposite ways now meet there.
+#[test]
+fn the_offsets_of_a_hairpin_2d_wide_meet() {
+    let v = [(0, -32512, -17), (-255, 5888, 17), (-1, -255, -1), (-1, 255, 0)];
+    let loops = check(
+        &Pocket {
+            boundary: imported_as_drawn(&v),
+            islands: vec![],
+        },
+        0,
+    );
+    assert_eq!(loops.len(), 1, "{loops:?}");
+    assert!(loops[0].is_ccw());
+}

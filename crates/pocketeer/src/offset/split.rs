@@ -32,9 +32,9 @@ pub struct Overrun {
 }
 
 /// Cuts every piece where it meets another. Pieces meeting at a cut share its node; a cut at a
-/// piece's end is that end's node. Pieces of elements that are not neighbours (sources as
-/// [`super::raw::raw_offset`] numbers them, `elements` in all) also meet where they come
-/// within [`TOUCH`].
+/// piece's end is that end's node. Pieces not joined end to start also meet where they come
+/// within [`TOUCH`], if they are of elements that are not neighbours (sources as
+/// [`super::raw::raw_offset`] numbers them, `elements` in all) or run opposite ways there.
 ///
 /// Gives up when finding the pairs to intersect would take more than `budget.0` box
 /// comparisons or the pieces cross more than `budget.1` times (pieces overlapping by the
@@ -95,12 +95,32 @@ pub fn split(
         // for a while without meeting, and only rounding decides their crossings.
         let (a, b) = (ends[i], ends[j]);
         let joined = a.1 == b.0 || b.1 == a.0;
-        // Likewise pieces of one element or of neighbouring ones: where the profile runs on
-        // smoothly their offsets stay near each other for a while. Walls drawn 2d apart are
-        // further apart along the profile.
+        // Likewise pieces of one element or of neighbouring ones where the profile runs on
+        // smoothly: their offsets stay near each other for a while, running the same way.
+        // Where neighbours turn back at their joint (a hairpin: two walls 2d apart that
+        // meet), their offsets come near each other running opposite ways, as those of any
+        // walls 2d apart do, and meet within TOUCH.
         let neighbours = a.2.abs_diff(b.2) <= 1;
-        let tolerance = if joined || neighbours { tol.eps } else { touch };
-        let hits = intersect(&pieces[i].segment, &pieces[j].segment, tolerance);
+        let (si, sj) = (&pieces[i].segment, &pieces[j].segment);
+        let hits = if joined {
+            intersect(si, sj, tol.eps)
+        } else if neighbours {
+            let near = intersect(si, sj, touch);
+            let opposed = |h: Intersection| {
+                let (ta, tb) = match h {
+                    Intersection::Point { ta, tb, .. } => (ta, tb),
+                    Intersection::Overlap { a, b } => (a.0, b.0),
+                };
+                si.tangent_at(ta).dot(sj.tangent_at(tb)) < 0.0
+            };
+            if !near.is_empty() && near.iter().all(opposed) {
+                near
+            } else {
+                intersect(si, sj, tol.eps)
+            }
+        } else {
+            intersect(si, sj, touch)
+        };
         for h in hits.iter() {
             let (first, second) = match h {
                 Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
