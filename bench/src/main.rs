@@ -34,6 +34,37 @@ fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
     (times[times.len() / 2], out.expect("at least one run"))
 }
 
+/// Medians of `f` and `g` run in turn, at least `reps` times each and until each has run for
+/// a second (at most 2000 times): a millisecond case gets hundreds of runs, and a change in
+/// the machine's load during the run falls on both alike. What the last runs returned.
+fn time_pair<T, U>(
+    reps: usize,
+    mut f: impl FnMut() -> T,
+    mut g: impl FnMut() -> U,
+) -> ((Duration, T), (Duration, U)) {
+    let (mut tf, mut tg) = (Vec::new(), Vec::new());
+    let (mut of, mut og) = (None, None);
+    let total = |v: &[Duration]| v.iter().sum::<Duration>();
+    while tf.len() < reps
+        || (tf.len() < 2000 && (total(&tf) < Duration::from_secs(1) || total(&tg) < Duration::from_secs(1)))
+    {
+        let t = Instant::now();
+        of = Some(f());
+        tf.push(t.elapsed());
+        let t = Instant::now();
+        og = Some(g());
+        tg.push(t.elapsed());
+    }
+    let median = |mut v: Vec<Duration>| {
+        v.sort();
+        v[v.len() / 2]
+    };
+    (
+        (median(tf), of.expect("at least one run")),
+        (median(tg), og.expect("at least one run")),
+    )
+}
+
 fn ms(d: Duration) -> String {
     format!("{:.1}", d.as_secs_f64() * 1e3)
 }
@@ -76,31 +107,35 @@ fn main() {
         let tol = Tolerance::for_extent(&p.boundary.bbox(), 0.001);
         // Both sides index their input once, outside the timing, as cavalier's Shape does.
         let region = pocketeer::offset::Region::new(&p);
-        // All levels in one call: on both cores, deeper levels from the sources of shallower.
-        let (ours, our_area) = time(reps, || {
-            region
-                .offset_levels(&case.distances, &tol)
-                .unwrap()
-                .iter()
-                .flatten()
-                .map(Contour::signed_area)
-                .sum::<f64>()
-        });
         let s = shape(case);
         let opts = ShapeOffsetOptions::default();
-        let (theirs, their_area) = time(reps, || {
-            case.distances
-                .iter()
-                .map(|&d| {
-                    let o = s.parallel_offset(d, &opts);
-                    o.ccw_plines
-                        .iter()
-                        .chain(o.cw_plines.iter())
-                        .map(|p| p.polyline.area())
-                        .sum::<f64>()
-                })
-                .sum::<f64>()
-        });
+        // Ours: all levels in one call, on both cores, deeper levels from the sources of
+        // shallower. Theirs: level by level. In turn, run for run.
+        let ((ours, our_area), (theirs, their_area)) = time_pair(
+            reps,
+            || {
+                region
+                    .offset_levels(&case.distances, &tol)
+                    .unwrap()
+                    .iter()
+                    .flatten()
+                    .map(Contour::signed_area)
+                    .sum::<f64>()
+            },
+            || {
+                case.distances
+                    .iter()
+                    .map(|&d| {
+                        let o = s.parallel_offset(d, &opts);
+                        o.ccw_plines
+                            .iter()
+                            .chain(o.cw_plines.iter())
+                            .map(|p| p.polyline.area())
+                            .sum::<f64>()
+                    })
+                    .sum::<f64>()
+            },
+        );
         // Clipper2 takes 96 s for the 10k-line case (one run): it runs once there and is left
         // out of the 10k-arc (204 s once) and 100k cases unless asked.
         let big = case.name.contains("10000 ") || case.name.contains("100000");

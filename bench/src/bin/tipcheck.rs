@@ -93,13 +93,17 @@ fn main() {
     }
     println!("ours off by more than 1e-6: {count2}; range {:?}", worst2);
 
-    // Area two ways: ours, and the polygon of end points plus each arc's circular segment.
+    // Area two ways: ours, and the polygon through every start and end point (a gap between
+    // one piece's end and the next one's start, up to some 1e-8 mm, is a side of it) plus
+    // each arc's circular segment.
     let mut poly = 0.0;
     let mut segs_area = 0.0;
     let o = segs[0].start();
+    let mut from = segs[segs.len() - 1].end() - o;
     for s in segs {
         let (a, b) = (s.start() - o, s.end() - o);
-        poly += 0.5 * a.cross(b);
+        poly += 0.5 * (from.cross(a) + a.cross(b));
+        from = b;
         if let Segment::Arc(arc) = s {
             let th = arc.sweep.abs();
             // theta - sin(theta) by its series for small angles.
