@@ -416,8 +416,8 @@ fn groups(points: &[P], r: f64) -> usize {
     ids.len()
 }
 
-/// The closed loops of a DXF the command wrote (LWPOLYLINE with bulges, CIRCLE), scaled by
-/// `k` to millimetres.
+/// The closed loops of a DXF the command wrote, scaled by `k` to millimetres: LWPOLYLINEs with
+/// bulges, as issue 3 asks (a judge reading only those must see every loop), and nothing else.
 fn read_loops(text: &str, k: f64) -> Vec<Vec<El>> {
     let lines: Vec<&str> = text.lines().map(str::trim).collect();
     let pairs: Vec<(i32, &str)> = lines
@@ -429,22 +429,18 @@ fn read_loops(text: &str, k: f64) -> Vec<Vec<El>> {
     while i < pairs.len() {
         let kind = pairs[i];
         i += 1;
-        if kind.0 != 0 || !(kind.1 == "LWPOLYLINE" || kind.1 == "CIRCLE") {
+        if kind.0 != 0 || ["SECTION", "ENDSEC", "EOF"].contains(&kind.1) {
             continue;
         }
+        assert_eq!(kind.1, "LWPOLYLINE", "the command wrote a loop as {}", kind.1);
         let mut pts: Vec<(f64, f64, f64)> = Vec::new();
-        let (mut x, mut r) = (0.0, 0.0);
-        let mut centre = (0.0, 0.0);
+        let mut x = 0.0;
         while i < pairs.len() && pairs[i].0 != 0 {
             let (code, v) = pairs[i];
             let v: f64 = v.parse().unwrap_or(0.0);
             match code {
                 10 => x = v,
-                20 => {
-                    pts.push((x * k, v * k, 0.0));
-                    centre = (x * k, v * k);
-                }
-                40 => r = v * k,
+                20 => pts.push((x * k, v * k, 0.0)),
                 42 => {
                     if let Some(last) = pts.last_mut() {
                         last.2 = v;
@@ -454,11 +450,7 @@ fn read_loops(text: &str, k: f64) -> Vec<Vec<El>> {
             }
             i += 1;
         }
-        loops.push(if kind.1 == "CIRCLE" {
-            circle(centre, r)
-        } else {
-            bulged(&pts)
-        });
+        loops.push(bulged(&pts));
     }
     loops
 }

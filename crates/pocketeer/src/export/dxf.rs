@@ -1,5 +1,5 @@
-//! A minimal DXF writer: closed contours as LWPOLYLINE entities with bulges (arcs stay exact),
-//! full circles as CIRCLE entities, in a file any CAD program reads.
+//! A minimal DXF writer: closed contours as LWPOLYLINE entities with bulges (arcs stay exact,
+//! a full circle as two half circles), in a file any CAD program reads.
 
 use crate::geom::{Contour, Segment};
 use crate::import::Units;
@@ -36,8 +36,10 @@ fn insunits(u: Units) -> i32 {
 /// use pocketeer::import::Units;
 /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 5.0))]);
 /// let text = write_dxf(&[LayeredContour { layer: "holes", contour: &disc }], Units::Millimeters);
+/// assert_eq!(text.matches("LWPOLYLINE").count(), 1);
 /// let back = pocketeer::read_drawing(text.as_bytes(), &Default::default()).unwrap();
-/// assert_eq!(back.elements.len(), 1);
+/// let area: f64 = back.elements.iter().map(|e| e.segment.area_term(Point::new(0.0, 0.0))).sum();
+/// assert!((0.5 * area - std::f64::consts::PI * 25.0).abs() < 1e-9);
 /// ```
 pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     let k = 1.0 / units.mm();
@@ -56,24 +58,27 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     pair(2, "ENTITIES");
     let num = |x: f64| format!("{:.10}", x * k);
     for lc in contours {
-        let segs = &lc.contour.segments;
-        if let [Segment::Arc(a)] = segs.as_slice() {
-            if a.is_full_circle() {
-                pair(0, "CIRCLE");
-                pair(8, lc.layer);
-                pair(10, &num(a.center.x));
-                pair(20, &num(a.center.y));
-                pair(40, &num(a.radius));
-                continue;
-            }
-        }
+        // A bulge gives an arc's sweep as tan(sweep / 4), which a full turn has none of: a
+        // circle is written as its two halves. (Not as a CIRCLE entity, which has no
+        // direction: a loop round an island runs clockwise.)
+        let segs: Vec<Segment> = lc
+            .contour
+            .segments
+            .iter()
+            .flat_map(|seg| match seg {
+                Segment::Arc(a) if a.is_full_circle() => {
+                    vec![Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))]
+                }
+                _ => vec![*seg],
+            })
+            .collect();
         pair(0, "LWPOLYLINE");
         pair(100, "AcDbEntity");
         pair(8, lc.layer);
         pair(100, "AcDbPolyline");
         pair(90, &segs.len().to_string());
         pair(70, "1");
-        for seg in segs {
+        for seg in &segs {
             let p = seg.start();
             pair(10, &num(p.x));
             pair(20, &num(p.y));
