@@ -141,7 +141,7 @@ pub enum ImportError {
         gap: Option<f64>,
     },
     /// A contour crosses or touches itself.
-    #[error("the contour on layer '{layer}' crosses itself at {}", fmt_point(*.point))]
+    #[error("the contour on layer '{layer}' crosses or touches itself at {}", fmt_point(*.point))]
     SelfCrossing {
         /// Layer of the contour.
         layer: String,

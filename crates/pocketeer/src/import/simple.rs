@@ -150,6 +150,43 @@ mod tests {
     }
 
     #[test]
+    fn an_outline_touching_itself_is_refused_where_it_touches() {
+        // Two squares sharing a corner drawn as one outline, and a notch whose tip touches
+        // the opposite edge: two pockets (or a pocket and an island) meeting at a point, with
+        // no inside defined there. Refused with the point, not cut into two loops.
+        for (pts, at) in [
+            (
+                vec![
+                    (0.0, 0.0),
+                    (10.0, 0.0),
+                    (10.0, 10.0),
+                    (20.0, 10.0),
+                    (20.0, 20.0),
+                    (10.0, 20.0),
+                    (10.0, 10.0),
+                    (0.0, 10.0),
+                ],
+                Point::new(10.0, 10.0),
+            ),
+            (
+                vec![
+                    (0.0, 0.0),
+                    (20.0, 0.0),
+                    (20.0, 10.0),
+                    (12.0, 10.0),
+                    (10.0, 0.0),
+                    (8.0, 10.0),
+                    (0.0, 10.0),
+                ],
+                Point::new(10.0, 0.0),
+            ),
+        ] {
+            let err = make_simple(&polygon(&pts), &Tolerance::default()).unwrap_err();
+            assert!(err.point.distance(at) < 1e-9, "{err:?}");
+        }
+    }
+
+    #[test]
     fn a_closing_sliver_is_removed() {
         // The last point misses the first by 3 µm: the closing segment makes a tiny loop.
         let c = polygon(&[
