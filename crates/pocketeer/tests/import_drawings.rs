@@ -406,6 +406,37 @@ fn extrusion_minus_z_mirrors_arcs_and_circles() {
 }
 
 #[test]
+fn a_clockwise_slot_in_a_tilted_plane_is_a_few_elliptical_arcs() {
+    // The 40 x 12 slot drawn clockwise (bulges -1) in a plane with normal (0.3, 0, 0.954):
+    // seen from +z its half circles are elliptical arcs run clockwise, whose fitting took
+    // 2^24 lines each (a 28 KB drawing found by fuzzing ran out of memory).
+    let nz = (1.0f64 - 0.09).sqrt();
+    let slot = lwpoly(
+        "0",
+        &[
+            (0.0, 0.0, -1.0),
+            (0.0, 12.0, 0.0),
+            (40.0, 12.0, -1.0),
+            (40.0, 0.0, 0.0),
+        ],
+        true,
+    )
+    .g(210, 0.3)
+    .g(220, 0.0)
+    .g(230, nz);
+    let a = read(&Drawing::new(vec![slot]));
+    let n = a.drawing.elements.len();
+    assert!((4..100).contains(&n), "{n} elements");
+    // The projected area, within perimeter × 0.001.
+    let area = (480.0 + 36.0 * PI) * nz;
+    assert!(
+        close(pockets(&a)[0].0, area, 0.12),
+        "{:?} against {area}",
+        pockets(&a)
+    );
+}
+
+#[test]
 fn ellipse_entities_become_arcs_within_a_micrometre() {
     let e = Entity::new("ELLIPSE", "0")
         .g(10, 5.0)

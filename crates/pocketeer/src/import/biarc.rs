@@ -32,7 +32,11 @@ fn fit_rec(
     if p0.distance(p1) <= tol * 1e-6 {
         return; // a negligible piece: the chain closes the gap within the join tolerance
     }
-    let candidate = match (d0.normalized(), d1.normalized()) {
+    // Going from t0 to t1 the curve heads along its derivative, or against it where t1 < t0
+    // (a clockwise elliptical arc): with the tangents reversed no biarc fits, and every piece
+    // was halved down to MAX_DEPTH, 16 million lines for one arc.
+    let ahead = if t1 >= t0 { 1.0 } else { -1.0 };
+    let candidate = match ((d0 * ahead).normalized(), (d1 * ahead).normalized()) {
         (Some(a), Some(b)) => biarc(p0, a, p1, b),
         _ => None,
     };
@@ -180,6 +184,32 @@ mod tests {
         assert!((segs[0].tangent_at(0.0) - t0).length() < 1e-9);
         assert!((segs[1].tangent_at(1.0) - t1).length() < 1e-9);
         assert!((segs[0].tangent_at(1.0) - segs[1].tangent_at(0.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn an_ellipse_arc_run_backwards_fits_in_a_few_arcs() {
+        // A clockwise elliptical arc (t decreasing), as a polyline's negative bulge seen in a
+        // tilted plane gives (fuzzing, import_region): it took 2^24 lines.
+        let eval = |t: f64| {
+            (
+                Point::new(7.3 * t.cos(), 6.9 * t.sin()),
+                Vector::new(-7.3 * t.sin(), 6.9 * t.cos()),
+            )
+        };
+        let (t0, t1) = (-1.45, -1.45 - 0.103);
+        let mut out = Vec::new();
+        fit(&eval, t0, t1, 0.001, &mut out);
+        assert!(!out.is_empty() && out.len() <= 4, "{} pieces", out.len());
+        assert!(out[0].start().distance(eval(t0).0) < 1e-9);
+        assert!(out[out.len() - 1].end().distance(eval(t1).0) < 1e-9);
+        for i in 0..=100 {
+            let p = eval(t0 + (t1 - t0) * i as f64 / 100.0).0;
+            let d = out
+                .iter()
+                .map(|s| point_distance(s, p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.001, "{d}");
+        }
     }
 
     #[test]
