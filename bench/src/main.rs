@@ -30,8 +30,13 @@ fn time<T>(reps: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
         out = Some(f());
         times.push(t.elapsed());
     }
+    (median(times), out.expect("at least one run"))
+}
+
+/// The median of `times` (at least one).
+fn median(mut times: Vec<Duration>) -> Duration {
     times.sort();
-    (times[times.len() / 2], out.expect("at least one run"))
+    times[times.len() / 2]
 }
 
 /// Medians of `f` and `g` run in turn, at least `reps` times each and until each has run for
@@ -55,10 +60,6 @@ fn time_pair<T, U>(
         og = Some(g());
         tg.push(t.elapsed());
     }
-    let median = |mut v: Vec<Duration>| {
-        v.sort();
-        v[v.len() / 2]
-    };
     (
         (median(tf), of.expect("at least one run")),
         (median(tg), og.expect("at least one run")),

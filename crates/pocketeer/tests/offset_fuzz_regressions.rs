@@ -789,8 +789,8 @@ fn a_sliver_triangle_whose_inscribed_circle_has_radius_d() {
 
 /// Found by the fifteenth run: the offset panicked in stitching. A walk that closed a loop at
 /// a node it had passed and then ran into a dead end left the node marked with a place in
-/// the abandoned walk; a later walk arriving there read past its own end. Marks are now
-/// cleared at a dead end and trusted only while they name a piece of the walk.
+/// the abandoned walk; a later walk arriving there read past its own end. A mark is now
+/// trusted only while it names a piece of the current walk leaving that node.
 #[test]
 fn a_walk_ending_dead_after_closing_a_loop_leaves_no_stale_mark() {
     fuzz_case(&[(31, 7167, 0), (-2, 0, 126), (0, 0, 0)], &[], 0);

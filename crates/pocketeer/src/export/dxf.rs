@@ -61,17 +61,15 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
         // A bulge gives an arc's sweep as tan(sweep / 4), which a full turn has none of: a
         // circle is written as its two halves. (Not as a CIRCLE entity, which has no
         // direction: a loop round an island runs clockwise.)
-        let segs: Vec<Segment> = lc
-            .contour
-            .segments
-            .iter()
-            .flat_map(|seg| match seg {
+        let mut segs = Vec::with_capacity(lc.contour.segments.len() + 1);
+        for seg in &lc.contour.segments {
+            match seg {
                 Segment::Arc(a) if a.is_full_circle() => {
-                    vec![Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))]
+                    segs.extend([Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))])
                 }
-                _ => vec![*seg],
-            })
-            .collect();
+                _ => segs.push(*seg),
+            }
+        }
         pair(0, "LWPOLYLINE");
         pair(100, "AcDbEntity");
         pair(8, lc.layer);

@@ -503,6 +503,16 @@ mod tests {
         (end, heading, circle)
     }
 
+    /// `hits` (the arriving curve first) are one point: the arriving curve's end, on `circle`.
+    fn assert_meets_at_end(hits: Intersections, end: Point, circle: &Arc) {
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let Some(Intersection::Point { point, ta, tb }) = hits.iter().next() else {
+            panic!("{hits:?}")
+        };
+        assert!(point.distance(end) < 1e-12 && ta == 1.0);
+        assert!(circle.point_at(tb).distance(end) < 1e-9);
+    }
+
     #[test]
     fn a_line_ending_on_an_arc_at_a_shallow_angle_meets_it_at_its_end() {
         let (end, heading, circle) = shallow_arrival();
@@ -513,12 +523,7 @@ mod tests {
             line_arc(&l, &circle, EPS),
             intersect(&Segment::Arc(circle), &Segment::Line(l), EPS).swapped(),
         ] {
-            assert_eq!(hits.len(), 1, "{hits:?}");
-            let Some(Intersection::Point { point, ta, tb }) = hits.iter().next() else {
-                panic!("{hits:?}")
-            };
-            assert!(point.distance(end) < 1e-12 && ta == 1.0);
-            assert!(circle.point_at(tb).distance(end) < 1e-9);
+            assert_meets_at_end(hits, end, &circle);
         }
     }
 
@@ -535,12 +540,7 @@ mod tests {
             arc_arc(&arriving, &circle, EPS),
             arc_arc(&circle, &arriving, EPS).swapped(),
         ] {
-            assert_eq!(hits.len(), 1, "{hits:?}");
-            let Some(Intersection::Point { point, ta, tb }) = hits.iter().next() else {
-                panic!("{hits:?}")
-            };
-            assert!(point.distance(end) < 1e-12 && ta == 1.0);
-            assert!(circle.point_at(tb).distance(end) < 1e-9);
+            assert_meets_at_end(hits, end, &circle);
         }
     }
 

@@ -113,7 +113,8 @@ pub fn split(
                 };
                 si.tangent_at(ta).dot(sj.tangent_at(tb)) < 0.0
             };
-            if !near.is_empty() && near.iter().all(opposed) {
+            // Nothing within TOUCH is nothing within eps either: no second try then.
+            if near.iter().all(opposed) {
                 near
             } else {
                 intersect(si, sj, tol.eps)
