@@ -125,6 +125,24 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
     let _ = writeln!(s, "rapids below Z=0          {}", lines(&r.rapids_below_top));
     let _ = writeln!(s, "plunges into uncut stock  {}", lines(&r.plunges));
     let _ = writeln!(s, "feed moves without F      {}", lines(&r.feedless));
+    let sides = &r.wall_sides;
+    match sides.climb_share() {
+        Some(share) => {
+            let _ = writeln!(
+                s,
+                "along walls               {:.1} mm at the final depth: {:.1} % climb (material on the tool's right, M3), {:.1} % conventional",
+                sides.right + sides.left,
+                100.0 * share,
+                100.0 * (1.0 - share)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "along walls               none: no move at the final depth follows a wall"
+            );
+        }
+    }
     let _ = writeln!(
         s,
         "cutting {:.1} mm, rapid {:.1} mm, {} retract(s), about {:.0} s",

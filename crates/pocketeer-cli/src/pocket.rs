@@ -42,7 +42,10 @@ pub struct PocketArgs {
     /// Height above the stock for rapid moves.
     #[arg(long, default_value = "5", value_parser = parse_length)]
     safe_z: f64,
-    /// Climb or conventional milling (spindle turning clockwise, M3).
+    /// Milling direction, for a spindle turning clockwise (M3). climb: the material on the
+    /// tool's right (the G41 side), pocket walls followed counter-clockwise and islands
+    /// clockwise; conventional: the material on the left, walls clockwise, islands
+    /// counter-clockwise.
     #[arg(long, value_enum, default_value_t = DirectionArg::Climb)]
     direction: DirectionArg,
     /// Material left on walls and islands by the roughing passes, then removed by one
@@ -187,6 +190,11 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
             fmt(args.plunge_feed),
             fmt(args.spindle)
         ),
+        match args.direction {
+            DirectionArg::Climb => "climb milling, spindle clockwise M3: walls CCW, islands CW",
+            DirectionArg::Conventional => "conventional milling, spindle clockwise M3: walls CW, islands CCW",
+        }
+        .to_string(),
         format!(
             "pockets {}, loops {loops}, retracts {}",
             analysis.regions.pockets.len(),

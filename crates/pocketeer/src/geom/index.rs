@@ -259,6 +259,21 @@ impl SegmentIndex {
             .min_by(|a, b| a.0.total_cmp(&b.0))
     }
 
+    /// The point of the segments nearest to `p` and its distance (`None` when there are no
+    /// segments).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
+    /// let p = Point::new;
+    /// let index = SegmentIndex::new(&[Segment::Line(Line::new(p(0.0, 0.0), p(10.0, 0.0)))]);
+    /// assert_eq!(index.nearest(p(4.0, 3.0)), Some((p(4.0, 0.0), 3.0)));
+    /// ```
+    pub fn nearest(&self, p: Point) -> Option<(Point, f64)> {
+        self.tree
+            .nearest(|b| b.distance_sq(p).sqrt(), |i| self.segments[i].distance(p))
+            .map(|(i, d)| (super::closest_point(&self.segments[i].segment, p), d))
+    }
+
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
         self.tree

@@ -19,13 +19,21 @@ use crate::geom::{Point, Segment, Tolerance};
 use crate::offset::Region;
 use crate::toolpath::{Feed, Point3, Toolpath};
 
-/// Which way the tool goes round.
+/// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
+///
+/// In climb milling the teeth meet the material thick-first, the chip thinning as the tooth
+/// leaves it: with an M3 spindle that puts the material on the tool's right as it moves, the
+/// side G41 (cutter compensation left) leaves it on. A pocket's wall loop therefore runs
+/// counter-clockwise and each island's loop clockwise, the way the clearing plan stores them;
+/// helix entries turn counter-clockwise (the material around the helix on the right).
+/// Conventional milling is the mirror of each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Direction {
-    /// Material on the tool's left with a clockwise (M3) spindle: clockwise along the pocket
-    /// wall, counter-clockwise around islands.
+    /// Material on the tool's right: counter-clockwise along the pocket wall, clockwise
+    /// around islands.
     Climb,
-    /// The opposite.
+    /// Material on the tool's left: clockwise along the pocket wall, counter-clockwise around
+    /// islands.
     Conventional,
 }
 
@@ -178,7 +186,9 @@ impl<'a> Linker<'a> {
     /// Cuts one loop or clean-up path of `node`; `enter` when the tool comes to it through
     /// uncut stock (the first path of a part with nothing inside it).
     fn cut_path(&mut self, node: &Node, item: &Path, enter: bool) {
-        let reverse = self.params.direction == Direction::Climb;
+        // The plan's loops run with the material on their right (outer loops counter-clockwise,
+        // loops round islands clockwise): climb as they are.
+        let reverse = self.params.direction == Direction::Conventional;
         let segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
         let q = segments[0].start();
         if enter || !self.down {
@@ -301,7 +311,8 @@ impl<'a> Linker<'a> {
         let q = segments[0].start();
         if p.entry == Entry::Helix {
             if let Some(h) = self.find_helix(node, segments) {
-                let ccw = p.direction == Direction::Conventional;
+                // The material is outside the helix: on the right when it turns counter-clockwise.
+                let ccw = p.direction == Direction::Climb;
                 let (start, sweep) = entry::helix_start(&h, self.z_top, self.z, p.ramp_angle, ccw, q);
                 self.descend_to_floor(start);
                 entry::helix_moves(&mut self.path, &h, self.z_top, self.z, sweep);
@@ -511,34 +522,83 @@ mod tests {
         assert!(l.warnings.is_empty());
     }
 
+    /// Wall-following length of `path`'s feed moves at the final depth by the side the wall
+    /// is on: (right, left).
+    fn wall_sides(path: &Toolpath, pocket: &Pocket, z: f64) -> (f64, f64) {
+        let walls: Vec<Segment> = pocket.contours().flat_map(|c| c.segments.clone()).collect();
+        let (mut right, mut left) = (0.0, 0.0);
+        let mut at = path.start;
+        for m in &path.moves {
+            let to = m.to();
+            let footprint = match *m {
+                Move::Line { .. } => Some(Segment::Line(crate::geom::Line::new(at.xy(), to.xy()))),
+                Move::Arc { center, sweep, .. } => {
+                    let v = at.xy() - center;
+                    Some(Segment::Arc(crate::geom::Arc::new(
+                        center,
+                        v.length(),
+                        v.angle(),
+                        sweep,
+                    )))
+                }
+                Move::Rapid { .. } => None,
+            };
+            if let Some(s) = footprint.filter(|_| at.z == z && to.z == z) {
+                for k in 0..100 {
+                    let t = (k as f64 + 0.5) / 100.0;
+                    let c = s.point_at(t);
+                    let (d, w) = walls
+                        .iter()
+                        .map(|w| (point_distance(w, c), crate::geom::closest_point(w, c)))
+                        .fold((f64::INFINITY, c), |a, b| if b.0 < a.0 { b } else { a });
+                    if (d - 3.0).abs() < 1e-3 {
+                        if s.tangent_at(t).cross(w - c) < 0.0 {
+                            right += s.length() / 100.0;
+                        } else {
+                            left += s.length() / 100.0;
+                        }
+                    }
+                }
+            }
+            at = to;
+        }
+        (right, left)
+    }
+
     #[test]
-    fn climb_goes_clockwise_along_the_wall() {
+    fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
         let pocket = Pocket {
-            boundary: rect(0.0, 0.0, 40.0, 30.0),
-            islands: vec![],
+            boundary: rect(0.0, 0.0, 60.0, 40.0),
+            islands: vec![rect(20.0, 15.0, 35.0, 25.0).reversed()],
         };
-        let (l, _) = linked(&pocket, 2.4, Entry::Helix);
-        // The last loop is the one at the wall (3 mm in); walk it and sum the turning.
-        let last: Vec<Point> = l
-            .toolpath
-            .moves
-            .iter()
-            .rev()
-            .filter(|m| matches!(m, Move::Line { .. }))
-            .map(|m| m.to().xy())
-            .filter(|p| {
-                let s = Segment::Line(crate::geom::Line::new(
-                    Point::new(3.0, 3.0),
-                    Point::new(37.0, 3.0),
-                ));
-                point_distance(&s, *p) < 1e-9
-                    || (p.x - 3.0).abs() < 1e-9
-                    || (p.x - 37.0).abs() < 1e-9
-                    || (p.y - 27.0).abs() < 1e-9
-            })
-            .take(5)
-            .collect();
-        let area = Contour::polygon(&last.iter().rev().copied().collect::<Vec<_>>()).signed_area();
-        assert!(area < 0.0, "clockwise expected, area {area}");
+        let tol = Tolerance::default();
+        let clear = ClearParams {
+            tool_radius: 3.0,
+            stepover: 2.4,
+            allowance: 0.0,
+        };
+        let plan = plan_pocket(&pocket, &clear, &tol).unwrap();
+        let region = Region::new(&pocket);
+        for (direction, wall_on_right) in [(Direction::Climb, true), (Direction::Conventional, false)] {
+            let p = LinkParams {
+                direction,
+                ..params(Entry::Helix)
+            };
+            let l = link(&[(&region, &plan)], &p, &tol);
+            let (right, left) = wall_sides(&l.toolpath, &pocket, -2.0);
+            // Both loops at the walls: 2 (54 + 34) round the wall; round the island its sides
+            // and a quarter circle of the tool's radius at each corner.
+            let expected = 2.0 * (54.0 + 34.0) + 2.0 * (15.0 + 10.0) + std::f64::consts::TAU * 3.0;
+            assert!((right + left - expected).abs() < 0.1, "{right} + {left}");
+            let (on, off) = if wall_on_right {
+                (right, left)
+            } else {
+                (left, right)
+            };
+            assert!(
+                off == 0.0,
+                "{direction:?}: {on} mm on the expected side, {off} on the other"
+            );
+        }
     }
 }

@@ -6,8 +6,9 @@ use crate::geom::{closest_param, point_distance, Point, Segment};
 use crate::toolpath::{Feed, Point3, Toolpath};
 
 /// The segments of `path` as the tool follows them: closed paths start at their point nearest
-/// to `from` and are reversed when `reverse` (climb milling goes round with the material on
-/// the tool's left); open paths start at their end nearer to `from`.
+/// to `from` and are reversed when `reverse` (conventional milling: the plan's loops run with
+/// the material on their right, as climb milling with an M3 spindle goes); open paths start
+/// at their end nearer to `from`.
 pub fn walk_from(path: &Path, from: Point, reverse: bool, eps: f64) -> Vec<Segment> {
     let oriented: Vec<Segment> = if reverse {
         path.segments.iter().rev().map(Segment::reversed).collect()

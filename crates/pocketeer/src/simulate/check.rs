@@ -91,6 +91,9 @@ pub struct CheckReport {
     pub retracts: usize,
     /// Estimated time, seconds (rapids at [`RAPID_RATE`]).
     pub seconds: f64,
+    /// Length along the walls at the final depth by the side the material is on (right:
+    /// climb milling with an M3 spindle).
+    pub wall_sides: super::side::Sides,
     /// Largest gouge over all pockets, mm.
     pub gouge: f64,
     /// Thickest leftover over all pockets, mm.
@@ -132,6 +135,7 @@ pub fn check_program(
         rapid_length: 0.0,
         retracts: 0,
         seconds: 0.0,
+        wall_sides: super::side::Sides::default(),
         gouge: 0.0,
         thickest: 0.0,
         passed: true,
@@ -212,6 +216,11 @@ pub fn check_program(
         }
     }
     report.swept = swept(moves, final_depth, r);
+    let all_walls: Vec<Segment> = pockets
+        .iter()
+        .flat_map(|p| p.contours().flat_map(|c| c.segments.iter().copied()))
+        .collect();
+    report.wall_sides = super::side::material_sides(moves, &SegmentIndex::new(&all_walls), final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
         let pc = pocket_check(p, &regions[i], &report.swept, gouges[i], r, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
@@ -238,10 +247,10 @@ fn cut_before(before: &[ProgramMove], p: Point3) -> bool {
     })
 }
 
-/// The area swept by the tool at `depth`: the chains of feed moves at that depth, stroked
-/// with round joins and ends to the tool's width.
+/// The area swept by the tool at `depth` or deeper (a program may cut below the depth asked
+/// for): the chains of feed moves there, stroked with round joins and ends to the tool's width.
 fn swept(moves: &[ProgramMove], depth: f64, r: f64) -> Vec<Shape> {
-    let at_depth = |z: f64| (z - depth).abs() <= 1e-4;
+    let at_depth = |z: f64| z <= depth + 1e-4;
     let mut chains: Vec<Vec<[f64; 2]>> = Vec::new();
     let mut last_end: Option<Point3> = None;
     for m in moves {

@@ -4,6 +4,7 @@
 pub mod check;
 pub mod gcode;
 pub mod polygon;
+pub mod side;
 
 pub use check::{check_program, CheckParams, CheckReport, PocketCheck};
 pub use gcode::{read_program, GcodeError, Program};

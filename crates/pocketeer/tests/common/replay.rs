@@ -211,3 +211,41 @@ pub fn measure(moves: &[Read], targets: &[Target], r: f64, depth: f64, h: f64, s
     }
     m
 }
+
+/// Wall-following length of the feed moves at `depth` (both ends within a micrometre of it) by
+/// the side the nearest wall is on, for a tool of radius `r`: (right, left). A move follows a
+/// wall where its centre is within 0.005 mm of `r` from the nearest of `walls`, found by
+/// trying every wall segment; moves are sampled every 0.05 mm.
+pub fn wall_sides(moves: &[Read], walls: &[Segment], r: f64, depth: f64) -> (f64, f64) {
+    let (mut right, mut left) = (0.0, 0.0);
+    for mv in moves {
+        if mv.rapid || (mv.z0 - depth).abs() > 1e-3 || (mv.z1 - depth).abs() > 1e-3 {
+            continue;
+        }
+        let len = mv.segment.length();
+        let n = (len / 0.05).ceil().max(1.0) as usize;
+        for k in 0..n {
+            let t = (k as f64 + 0.5) / n as f64;
+            let c = mv.segment.point_at(t);
+            let (d, w) = walls
+                .iter()
+                .map(|s| {
+                    let w = pocketeer::geom::closest_point(s, c);
+                    (w.distance(c), w)
+                })
+                .fold((f64::INFINITY, c), |a, b| if b.0 < a.0 { b } else { a });
+            if (d - r).abs() > 0.005 {
+                continue;
+            }
+            // Ahead along the move and towards the wall: the wall is on the right when turning
+            // from the first to the second is clockwise.
+            let ahead = mv.segment.point_at((t + 1e-3).min(1.0)) - mv.segment.point_at((t - 1e-3).max(0.0));
+            if ahead.cross(w - c) < 0.0 {
+                right += len / n as f64;
+            } else {
+                left += len / n as f64;
+            }
+        }
+    }
+    (right, left)
+}
