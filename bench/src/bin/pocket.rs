@@ -74,6 +74,7 @@ fn main() {
                 depth: 2.0,
                 step_down: 2.0,
                 safe_z: 5.0,
+                feed_height: 1.0,
                 direction: Direction::Climb,
                 entry: Entry::Helix,
                 ramp_angle: 3f64.to_radians(),
@@ -100,6 +101,7 @@ fn main() {
                 spindle: 12000.0,
                 safe_z: 5.0,
                 header: vec![],
+                ..ProgramSettings::default()
             };
             let g = write_gcode(&linked.toolpath, &settings, Dialect::Grbl);
             let t4 = Instant::now();

@@ -1,6 +1,6 @@
 //! `pocketeer check`: a program replayed against its drawing.
 
-use crate::length::{parse_length, parse_nonneg_length};
+use crate::length::{parse_length, parse_nonneg_length, parse_rate};
 use crate::{emit, output, read_analysis, DrawingArgs, Failure};
 use clap::Args;
 use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
@@ -14,16 +14,20 @@ pub struct CheckArgs {
     /// The G-code program to check.
     program: PathBuf,
     /// Tool diameter (6, 6mm, 0.25in).
-    #[arg(long, value_parser = parse_length)]
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     tool_diameter: f64,
-    /// Depth of the pocket below Z=0 [default: the deepest Z of the program].
-    #[arg(long, value_parser = parse_length)]
+    /// Depth of the pocket below Z=0: the area swept at this depth or deeper is judged
+    /// [default: the deepest Z of the program].
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     depth: Option<f64>,
+    /// Rapid speed of the machine for the time estimate, per minute.
+    #[arg(long, default_value = "5000", value_parser = parse_rate, allow_hyphen_values = true)]
+    rapid_rate: f64,
     /// Largest gouge accepted.
-    #[arg(long, default_value = "0.01", value_parser = parse_nonneg_length)]
+    #[arg(long, default_value = "0.01", value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     gouge_tolerance: f64,
     /// Thickest leftover accepted.
-    #[arg(long, default_value = "0.05", value_parser = parse_nonneg_length)]
+    #[arg(long, default_value = "0.05", value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     leftover_tolerance: f64,
     /// Print the report as JSON.
     #[arg(long)]
@@ -42,9 +46,23 @@ pub enum Verdict {
 pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     if !(args.tool_diameter.is_finite() && args.tool_diameter > 0.0) {
         return Err(Failure(format!(
-            "tool-diameter must be positive (got {})",
+            "--tool-diameter {}: the tool diameter must be positive",
             args.tool_diameter
         )));
+    }
+    if let Some(d) = args.depth.filter(|d| !(d.is_finite() && *d > 0.0)) {
+        return Err(Failure(format!(
+            "--depth {d}: the depth must be positive: it is measured down from the stock top (Z=0)"
+        )));
+    }
+    if !(args.rapid_rate.is_finite() && args.rapid_rate > 0.0) {
+        return Err(Failure(format!(
+            "--rapid-rate {}: the rapid rate must be positive",
+            args.rapid_rate
+        )));
+    }
+    if let Some(svg) = &args.svg {
+        output::guard(&[&args.drawing.file, &args.program], &[("--svg", svg)]).map_err(Failure)?;
     }
     let analysis = read_analysis(&args.drawing)?;
     let name = args.program.display();
@@ -56,6 +74,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         depth: args.depth,
         gouge_tolerance: args.gouge_tolerance,
         leftover_tolerance: args.leftover_tolerance,
+        rapid_rate: args.rapid_rate,
     };
     let report = check_program(&analysis.regions.pockets, &program, &params, &analysis.tolerance)
         .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
@@ -122,7 +141,7 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
             )
         }
     };
-    let _ = writeln!(s, "rapids below Z=0          {}", lines(&r.rapids_below_top));
+    let _ = writeln!(s, "rapids into the stock     {}", lines(&r.rapids_into_stock));
     let _ = writeln!(s, "plunges into uncut stock  {}", lines(&r.plunges));
     let _ = writeln!(s, "feed moves without F      {}", lines(&r.feedless));
     let sides = &r.wall_sides;
@@ -145,8 +164,13 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
     }
     let _ = writeln!(
         s,
-        "cutting {:.1} mm, rapid {:.1} mm, {} retract(s), about {:.0} s",
-        r.cut_length, r.rapid_length, r.retracts, r.seconds
+        "cutting {:.1} mm, rapid {:.1} mm, {}, {} s of dwell, about {} (rapids at {} mm/min)",
+        r.cut_length,
+        r.rapid_length,
+        crate::display::count(r.retracts, "retract", "retracts"),
+        crate::display::num(r.dwell, 3),
+        crate::display::time(r.seconds),
+        crate::display::num(params.rapid_rate, 3)
     );
     let _ = writeln!(
         s,
@@ -216,6 +240,13 @@ fn preview(
             fill: "#dde6f0",
             contours: &walls,
             paths: &[],
+        },
+        svg::Layer {
+            name: "ignored-open-chains",
+            stroke: "#e07000",
+            fill: "none",
+            contours: &[],
+            paths: &crate::ignored_open_chains(analysis),
         },
         svg::Layer {
             name: "swept",

@@ -1,12 +1,15 @@
 //! The `pocketeer` command: a thin layer of argument parsing and messages over the library.
 
 mod check;
+mod display;
 mod length;
 mod output;
 mod pocket;
 mod report;
+mod sanity;
 
 use clap::{Args, Parser, Subcommand};
+use pocketeer::import::error::fmt_point;
 use pocketeer::import::Units;
 use pocketeer::ImportOptions;
 use std::path::PathBuf;
@@ -22,13 +25,18 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Show what a drawing holds: units, layers, entities, contours, pockets and islands.
+    /// Show what a drawing holds: units, extents, layers, entities, contours, pockets and
+    /// islands.
     Inspect(InspectArgs),
     /// Offset every pocket of a drawing by a distance and write the loops as a DXF.
+    #[command(allow_negative_numbers = true)]
     Offset(OffsetArgs),
     /// Clear every pocket of a drawing and write the G-code program.
+    #[command(allow_negative_numbers = true)]
     Pocket(pocket::PocketArgs),
-    /// Replay a G-code program against its drawing: gouge, leftover, rapids, plunges, time.
+    /// Replay a G-code program against its drawing: gouge, leftover, milling side, rapids,
+    /// plunges, time.
+    #[command(allow_negative_numbers = true)]
     Check(check::CheckArgs),
 }
 
@@ -44,7 +52,7 @@ struct DrawingArgs {
     #[arg(long)]
     units: Option<Units>,
     /// End points closer than this are joined (a length: 0.001, 0.01mm, 0.0001in).
-    #[arg(long, default_value = "0.001", value_parser = length::parse_nonneg_length)]
+    #[arg(long, default_value = "0.001", value_parser = length::parse_nonneg_length, allow_hyphen_values = true)]
     join_tolerance: f64,
     /// Ignore open chains even where they surround closed contours (refused by default: such a
     /// chain is most likely a pocket outline with a gap).
@@ -68,7 +76,8 @@ struct OffsetArgs {
     /// Offset distance (3, 3mm, 0.125in): positive shrinks the pockets, negative grows them.
     #[arg(long, value_parser = length::parse_length, allow_hyphen_values = true)]
     distance: f64,
-    /// The DXF file to write: closed LWPOLYLINEs with bulges, in the drawing's units.
+    /// The DXF file to write: closed LWPOLYLINEs with bulges, in the drawing's units; `-`
+    /// writes to standard output.
     #[arg(short, long)]
     output: PathBuf,
     /// Also draw the drawing and the loops in this SVG file.
@@ -107,24 +116,33 @@ fn inspect(args: &InspectArgs) -> Result<(), Failure> {
 
 fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     use pocketeer::export::{dxf, svg};
+    let mut outputs = vec![("-o", args.output.as_path())];
+    if let Some(svg) = &args.svg {
+        outputs.push(("--svg", svg.as_path()));
+    }
+    output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
     let analysis = read_analysis(&args.drawing)?;
+    print_warnings(&report::import_warnings(&analysis));
     let tol = &analysis.tolerance;
     let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
+    let name = args.drawing.file.display();
     for (k, p) in analysis.regions.pockets.iter().enumerate() {
-        let offset = pocketeer::offset::offset_pocket(p, args.distance, tol).map_err(|e| {
-            let s = p
-                .boundary
-                .segments
-                .first()
-                .map_or(pocketeer::geom::Point::new(0.0, 0.0), |s| s.start());
-            Failure(format!(
-                "{}: pocket {} (outline through ({:.4}, {:.4}) mm): {e}",
-                args.drawing.file.display(),
-                k + 1,
-                s.x,
-                s.y
-            ))
-        })?;
+        let at = p
+            .boundary
+            .segments
+            .first()
+            .map_or(pocketeer::geom::Point::new(0.0, 0.0), |s| s.start());
+        let place = format!("pocket {} (outline through {})", k + 1, fmt_point(at));
+        let offset = pocketeer::offset::offset_pocket(p, args.distance, tol)
+            .map_err(|e| Failure(format!("{name}: {place}: {e}")))?;
+        if offset.is_empty() {
+            let r = pocketeer::offset::largest_inscribed_radius(p, tol)
+                .map_err(|e| Failure(format!("{name}: {place}: {e}")))?;
+            eprintln!(
+                "pocketeer: warning: {place} has no loop at {} mm: its largest inscribed circle has a radius of {r:.4} mm",
+                display::num(args.distance, 6)
+            );
+        }
         loops.extend(offset);
     }
     let layered: Vec<dxf::LayeredContour> = loops
@@ -135,7 +153,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
         })
         .collect();
     let text = dxf::write_dxf(&layered, analysis.drawing.units);
-    output::write_atomic(&args.output, text.as_bytes()).map_err(Failure)?;
+    output::write_output(&args.output, text.as_bytes()).map_err(Failure)?;
     if let Some(path) = &args.svg {
         let walls: Vec<pocketeer::geom::Contour> = analysis
             .regions
@@ -152,6 +170,13 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
                 paths: &[],
             },
             svg::Layer {
+                name: "ignored-open-chains",
+                stroke: "#e07000",
+                fill: "none",
+                contours: &[],
+                paths: &ignored_open_chains(&analysis),
+            },
+            svg::Layer {
                 name: "offset",
                 stroke: "#d03030",
                 fill: "none",
@@ -162,13 +187,30 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
     eprintln!(
-        "{} pocket(s) offset by {} mm: {} loop(s) written to {}",
-        analysis.regions.pockets.len(),
-        args.distance,
-        loops.len(),
-        args.output.display()
+        "{} offset by {} mm: {} written to {}",
+        display::count(analysis.regions.pockets.len(), "pocket", "pockets"),
+        display::num(args.distance, 6),
+        display::count(loops.len(), "loop", "loops"),
+        output::describe(&args.output)
     );
     Ok(())
+}
+
+/// Prints each warning on its own line of standard error.
+fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("pocketeer: warning: {w}");
+    }
+}
+
+/// The elements of the open chains ignored under `--ignore-open`, one path each, for previews.
+fn ignored_open_chains(a: &pocketeer::Analysis) -> Vec<Vec<pocketeer::geom::Segment>> {
+    a.chains
+        .open
+        .iter()
+        .flat_map(|o| o.elements.iter().filter_map(|&e| a.drawing.elements.get(e)))
+        .map(|e| vec![e.segment])
+        .collect()
 }
 
 /// Writes to standard output; a reader that stops early (`| head`) is not an error.

@@ -1,69 +1,98 @@
-//! `pocketeer pocket`: the drawing in, a G-code program out.
+//! `pocketeer pocket`: the drawing in, a G-code program out. The flags become settings (with
+//! defaults in the job's unit), the settings a plan, the plan a program with a header that says
+//! how to make it again; the program is checked when asked and written last.
 
-use crate::length::{parse_length, parse_nonneg_length};
+use crate::display::{count, num, JobUnits};
+use crate::length::{parse_length, parse_nonneg_length, parse_point, parse_rate};
 use crate::{output, read_analysis, DrawingArgs, Failure};
 use clap::{Args, ValueEnum};
 use pocketeer::clear::ClearParams;
-use pocketeer::import::Units;
+use pocketeer::geom::Point;
 use pocketeer::link::{Direction, Entry, LinkParams};
-use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::post::{estimate, write_gcode, Coolant, Dialect, Estimate, ProgramSettings, ProgramUnits};
 use std::path::PathBuf;
-
-/// Rapid speed assumed for the time estimate, mm/min.
-const RAPID_RATE: f64 = 5000.0;
 
 #[derive(Args)]
 pub struct PocketArgs {
     #[command(flatten)]
     drawing: DrawingArgs,
     /// Tool diameter (6, 6mm, 0.25in).
-    #[arg(long, value_parser = parse_length)]
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     tool_diameter: f64,
     /// Distance between neighbouring passes: a length (2.4, 2.4mm) or a share of the tool
     /// diameter (40%); less than the diameter.
-    #[arg(long, value_parser = parse_stepover)]
+    #[arg(long, value_parser = parse_stepover, allow_hyphen_values = true)]
     stepover: Stepover,
     /// Depth of the pocket below the stock top (Z=0), a positive length.
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     depth: f64,
     /// Largest depth of one pass [default: the whole depth when it is at most the tool
     /// diameter, else equal passes of at most one diameter].
-    #[arg(long, value_parser = parse_length)]
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     step_down: Option<f64>,
-    /// Cutting feed per minute (1000 = 1000 mm/min; 40in = 40 in/min).
-    #[arg(long, default_value = "1000", value_parser = parse_length)]
-    feed: f64,
-    /// Feed per minute for moves that go down into the stock (helix, ramp, plunge).
-    #[arg(long, default_value = "300", value_parser = parse_length)]
-    plunge_feed: f64,
+    /// Cutting feed per minute (1000, 1000mm/min, 40in/min) [default: 1000 mm/min; 40 in/min
+    /// for an inch drawing].
+    #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
+    feed: Option<f64>,
+    /// Feed per minute for moves that go down into the stock (helix, ramp, plunge) [default:
+    /// 300 mm/min; 12 in/min for an inch drawing].
+    #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
+    plunge_feed: Option<f64>,
     /// Spindle speed, rpm.
-    #[arg(long, default_value_t = 12000.0)]
+    #[arg(long, default_value_t = 12000.0, allow_hyphen_values = true)]
     spindle: f64,
-    /// Height above the stock for rapid moves.
-    #[arg(long, default_value = "5", value_parser = parse_length)]
-    safe_z: f64,
+    /// Seconds to wait after starting the spindle for it to reach its speed (G4); 0: none.
+    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
+    spindle_wait: f64,
+    /// Height above the stock top (Z=0) for rapid moves [default: 5 mm; 0.2 in for an inch
+    /// drawing].
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
+    safe_z: Option<f64>,
+    /// How far above the stock, or above the floor already cut at that spot, rapid descents
+    /// stop and the plunge feed takes over [default: 1 mm; 0.04 in for an inch drawing].
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
+    feed_height: Option<f64>,
     /// Milling direction, for a spindle turning clockwise (M3). climb: the material on the
     /// tool's right (the G41 side), pocket walls followed counter-clockwise and islands
     /// clockwise; conventional: the material on the left, walls clockwise, islands
     /// counter-clockwise.
-    #[arg(long, value_enum, default_value_t = DirectionArg::Climb)]
+    #[arg(long, value_enum, ignore_case = true, default_value_t = DirectionArg::Climb)]
     direction: DirectionArg,
     /// Material left on walls and islands by the roughing passes, then removed by one
     /// finishing pass at the wall.
-    #[arg(long, default_value = "0", value_parser = parse_nonneg_length)]
+    #[arg(long, default_value = "0", value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     allowance: f64,
     /// How the tool enters the stock.
-    #[arg(long, value_enum, default_value_t = EntryArg::Helix)]
+    #[arg(long, value_enum, ignore_case = true, default_value_t = EntryArg::Helix)]
     entry: EntryArg,
     /// Largest angle of helix and ramp entries from the horizontal, degrees.
-    #[arg(long, default_value_t = 3.0)]
+    #[arg(long, default_value_t = 3.0, allow_hyphen_values = true)]
     ramp_angle: f64,
     /// The controller the program is for.
-    #[arg(long, value_enum, default_value_t = PostArg::Grbl)]
+    #[arg(long, value_enum, ignore_case = true, default_value_t = PostArg::Grbl)]
     post: PostArg,
-    /// The G-code file to write (written only when everything succeeded).
+    /// Load this tool before starting (T n M6; GRBL, which has no tool changer, gets the T word
+    /// and a comment) [default: no tool change].
+    #[arg(long)]
+    tool_number: Option<u32>,
+    /// Coolant: flood (M8), mist (M7) or off.
+    #[arg(long, value_enum, ignore_case = true, default_value_t = CoolantArg::Off)]
+    coolant: CoolantArg,
+    /// Where to move at the safe height at the end, X,Y (lengths: -10,150 or 0,6in)
+    /// [default: stay above the last cut].
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    park: Option<(f64, f64)>,
+    /// Rapid speed of the machine for the time estimate, per minute [default: 5000 mm/min;
+    /// 200 in/min for an inch drawing].
+    #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
+    rapid_rate: Option<f64>,
+    /// The G-code file to write (written only when everything succeeded); `-` writes to
+    /// standard output.
     #[arg(short, long)]
     output: PathBuf,
+    /// Write the program even to a file named like a drawing (`.dxf`).
+    #[arg(long)]
+    force: bool,
     /// Also draw the drawing, the loops and the tool path in this SVG file.
     #[arg(long)]
     svg: Option<PathBuf>,
@@ -86,11 +115,18 @@ enum EntryArg {
     Plunge,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum PostArg {
     Grbl,
     Linuxcnc,
     Mach3,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum CoolantArg {
+    Off,
+    Flood,
+    Mist,
 }
 
 /// A stepover as given: millimetres or a share of the diameter.
@@ -116,79 +152,286 @@ fn parse_stepover(s: &str) -> Result<Stepover, String> {
     parse_length(s).map(Stepover::Length)
 }
 
-fn positive(name: &str, v: f64) -> Result<f64, Failure> {
+/// Defaults that depend on the job's unit: round figures in that unit, not conversions.
+struct Defaults {
+    feed: f64,
+    plunge_feed: f64,
+    safe_z: f64,
+    feed_height: f64,
+    rapid_rate: f64,
+}
+
+impl Defaults {
+    fn of(units: JobUnits) -> Defaults {
+        match units {
+            JobUnits::Millimetres => Defaults {
+                feed: 1000.0,
+                plunge_feed: 300.0,
+                safe_z: 5.0,
+                feed_height: 1.0,
+                rapid_rate: 5000.0,
+            },
+            JobUnits::Inches => Defaults {
+                feed: 40.0 * 25.4,
+                plunge_feed: 12.0 * 25.4,
+                safe_z: 0.2 * 25.4,
+                feed_height: 0.04 * 25.4,
+                rapid_rate: 200.0 * 25.4,
+            },
+        }
+    }
+}
+
+/// Everything the job is made with, in millimetres, defaults filled in.
+struct Settings {
+    units: JobUnits,
+    diameter: f64,
+    stepover: f64,
+    depth: f64,
+    step_down: f64,
+    feed: f64,
+    plunge_feed: f64,
+    safe_z: f64,
+    feed_height: f64,
+    rapid_rate: f64,
+    park: Option<Point>,
+    dialect: Dialect,
+}
+
+fn positive(flag: &str, v: f64, why: &str) -> Result<f64, Failure> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(Failure(format!("{name} must be positive (got --{name} {v})")))
+        Err(Failure(format!("--{flag} {}: {why}", num(v, 6))))
+    }
+}
+
+impl Settings {
+    fn new(args: &PocketArgs, units: JobUnits) -> Result<Settings, Failure> {
+        let d = Defaults::of(units);
+        let diameter = positive(
+            "tool-diameter",
+            args.tool_diameter,
+            "the tool diameter must be positive",
+        )?;
+        let stepover = match args.stepover {
+            Stepover::Length(v) => v,
+            Stepover::Percent(p) => diameter * p / 100.0,
+        };
+        let depth = positive(
+            "depth",
+            args.depth,
+            "the depth must be positive: it is measured down from the stock top (Z=0), e.g. --depth 3",
+        )?;
+        let step_down = match args.step_down {
+            Some(v) => positive("step-down", v, "the step-down must be positive")?,
+            None if depth <= diameter => depth,
+            None => diameter,
+        };
+        let feed = positive("feed", args.feed.unwrap_or(d.feed), "the feed must be positive")?;
+        let plunge_feed = positive(
+            "plunge-feed",
+            args.plunge_feed.unwrap_or(d.plunge_feed),
+            "the plunge feed must be positive",
+        )?;
+        positive(
+            "spindle",
+            args.spindle,
+            "the spindle speed must be positive (rpm)",
+        )?;
+        if !(args.spindle_wait.is_finite() && args.spindle_wait >= 0.0) {
+            return Err(Failure(format!(
+                "--spindle-wait {}: a wait is zero seconds or more",
+                num(args.spindle_wait, 3)
+            )));
+        }
+        let safe_z = positive(
+            "safe-z",
+            args.safe_z.unwrap_or(d.safe_z),
+            "the safe height must be above the stock top (Z=0): rapid moves travel there, over the stock and the clamps",
+        )?;
+        let feed_height = args.feed_height.unwrap_or(d.feed_height.min(safe_z));
+        if !(feed_height.is_finite() && (0.0..=safe_z).contains(&feed_height)) {
+            return Err(Failure(format!(
+                "--feed-height {}: the feed height is between 0 (the stock top, or the floor already cut) and the safe height ({})",
+                num(feed_height, 4),
+                units.length(safe_z)
+            )));
+        }
+        let rapid_rate = positive(
+            "rapid-rate",
+            args.rapid_rate.unwrap_or(d.rapid_rate),
+            "the rapid rate must be positive",
+        )?;
+        let dialect = match args.post {
+            PostArg::Grbl => Dialect::Grbl,
+            PostArg::Linuxcnc => Dialect::LinuxCnc,
+            PostArg::Mach3 => Dialect::Mach3,
+        };
+        if args.post == PostArg::Grbl && args.coolant == CoolantArg::Mist {
+            return Err(Failure(
+                "--coolant mist: GRBL 1.1 takes M7 only when built with ENABLE_M7, which its stock firmware is not; use --coolant flood (M8)".into(),
+            ));
+        }
+        Ok(Settings {
+            units,
+            diameter,
+            stepover,
+            depth,
+            step_down,
+            feed,
+            plunge_feed,
+            safe_z,
+            feed_height,
+            rapid_rate,
+            park: args.park.map(|(x, y)| Point::new(x, y)),
+            dialect,
+        })
+    }
+
+    fn clear(&self, args: &PocketArgs) -> ClearParams {
+        ClearParams {
+            tool_radius: 0.5 * self.diameter,
+            stepover: self.stepover,
+            allowance: args.allowance,
+        }
+    }
+
+    fn link(&self, args: &PocketArgs) -> LinkParams {
+        LinkParams {
+            tool_radius: 0.5 * self.diameter,
+            depth: self.depth,
+            step_down: self.step_down,
+            safe_z: self.safe_z,
+            feed_height: self.feed_height,
+            direction: match args.direction {
+                DirectionArg::Climb => Direction::Climb,
+                DirectionArg::Conventional => Direction::Conventional,
+            },
+            entry: match args.entry {
+                EntryArg::Helix => Entry::Helix,
+                EntryArg::Ramp => Entry::Ramp,
+                EntryArg::Plunge => Entry::Plunge,
+            },
+            ramp_angle: args.ramp_angle.to_radians(),
+        }
+    }
+
+    fn program(&self, args: &PocketArgs, header: Vec<String>) -> ProgramSettings {
+        ProgramSettings {
+            units: match self.units {
+                JobUnits::Millimetres => ProgramUnits::Millimetres,
+                JobUnits::Inches => ProgramUnits::Inches,
+            },
+            feed: self.feed,
+            plunge_feed: self.plunge_feed,
+            spindle: args.spindle,
+            safe_z: self.safe_z,
+            header,
+            spindle_wait: args.spindle_wait,
+            tool: args.tool_number,
+            coolant: match args.coolant {
+                CoolantArg::Off => Coolant::Off,
+                CoolantArg::Flood => Coolant::Flood,
+                CoolantArg::Mist => Coolant::Mist,
+            },
+            park: self.park,
+        }
     }
 }
 
 pub fn run(args: &PocketArgs) -> Result<(), Failure> {
-    let diameter = positive("tool-diameter", args.tool_diameter)?;
-    let stepover = match args.stepover {
-        Stepover::Length(v) => v,
-        Stepover::Percent(p) => diameter * p / 100.0,
-    };
-    let depth = positive("depth", args.depth)?;
-    let step_down = match args.step_down {
-        Some(v) => positive("step-down", v)?,
-        None if depth <= diameter => depth,
-        None => diameter,
-    };
-    positive("feed", args.feed)?;
-    positive("plunge-feed", args.plunge_feed)?;
-    positive("spindle", args.spindle)?;
-    let clear = ClearParams {
-        tool_radius: 0.5 * diameter,
-        stepover,
-        allowance: args.allowance,
-    };
-    let link = LinkParams {
-        tool_radius: 0.5 * diameter,
-        depth,
-        step_down,
-        safe_z: args.safe_z,
-        direction: match args.direction {
-            DirectionArg::Climb => Direction::Climb,
-            DirectionArg::Conventional => Direction::Conventional,
-        },
-        entry: match args.entry {
-            EntryArg::Helix => Entry::Helix,
-            EntryArg::Ramp => Entry::Ramp,
-            EntryArg::Plunge => Entry::Plunge,
-        },
-        ramp_angle: args.ramp_angle.to_radians(),
-    };
+    guard_outputs(args)?;
     let analysis = read_analysis(&args.drawing)?;
     let name = args.drawing.file.display();
+    let s = Settings::new(args, JobUnits::of(analysis.drawing.units))?;
+    let mut warnings = crate::report::import_warnings(&analysis);
+    warnings.extend(crate::sanity::size_warnings(&analysis));
+    crate::print_warnings(&warnings);
     let tol = &analysis.tolerance;
-    let job = pocketeer::job::pocket_job(&analysis.regions.pockets, &clear, &link, tol)
-        .map_err(|e| Failure(format!("{name}: {e}")))?;
-    let stats = job.linked.toolpath.stats();
-    let seconds = stats.seconds(args.feed, args.plunge_feed, RAPID_RATE);
+    let job = pocketeer::job::pocket_job(&analysis.regions.pockets, &s.clear(args), &s.link(args), tol)
+        .map_err(|e| match e {
+            pocketeer::job::JobError::ToolFitsNowhere { .. } => Failure(format!(
+                "{name}: {e}; {}",
+                crate::sanity::unit_advice(&analysis, false)
+            )),
+            e => Failure(format!("{name}: {e}")),
+        })?;
+    // The figures do not depend on the header: estimate them first, then write the header.
+    let figures = estimate(&job.linked.toolpath, &s.program(args, Vec::new()), s.rapid_rate);
     let loops: usize = job.plans.iter().map(|p| p.loop_count()).sum();
-    let passes = pocketeer::link::pass_depths(depth, step_down).len();
-    let units = if analysis.drawing.units == Units::Inches {
-        ProgramUnits::Inches
-    } else {
-        ProgramUnits::Millimetres
-    };
-    // Short lines: some senders and controllers limit a line to 80 characters.
-    let header = vec![
+    let passes = pocketeer::link::pass_depths(s.depth, s.step_down).len();
+    let header = header(args, &s, &analysis, loops, passes, &figures);
+    let program = write_gcode(&job.linked.toolpath, &s.program(args, header), s.dialect);
+    if args.check {
+        self_check(args, &s, &analysis, &program)?;
+    }
+    if let Some(path) = &args.svg {
+        let doc = preview(&analysis, &job);
+        output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
+    }
+    output::write_output(&args.output, program.as_bytes()).map_err(Failure)?;
+    let mut after: Vec<String> = job.linked.warnings.clone();
+    after.extend(crate::sanity::time_warning(&analysis, figures.seconds));
+    crate::print_warnings(&after);
+    let u = s.units;
+    eprintln!(
+        "drawing {}",
+        crate::sanity::describe_extent(&analysis.drawing.extent)
+    );
+    eprintln!(
+        "{}, {} in {}: cutting {}, rapid {}, {}, about {} (rapids at {}); written to {}",
+        count(analysis.regions.pockets.len(), "pocket", "pockets"),
+        count(loops, "loop", "loops"),
+        count(passes, "pass", "passes"),
+        u.distance(figures.feed_length),
+        u.distance(figures.rapid_length),
+        count(figures.retracts, "retract", "retracts"),
+        crate::display::time(figures.seconds),
+        u.rate(s.rapid_rate),
+        output::describe(&args.output)
+    );
+    Ok(())
+}
+
+/// The program's header: every setting needed to make it again, in the job's unit, and the
+/// command line. Short lines: some senders and controllers limit a line to 80 characters.
+fn header(
+    args: &PocketArgs,
+    s: &Settings,
+    analysis: &pocketeer::Analysis,
+    loops: usize,
+    passes: usize,
+    figures: &Estimate,
+) -> Vec<String> {
+    let u = s.units;
+    let mut h = vec![
         format!("pocketeer {}", env!("CARGO_PKG_VERSION")),
         format!("drawing {}", file_name(&args.drawing.file)),
-        format!("tool diameter {} mm, stepover {:.4} mm", fmt(diameter), stepover),
+        format!("units {}: {}", u.symbol(), crate::sanity::unit_origin(analysis)),
         format!(
-            "depth {} mm in {passes} passes, allowance {} mm",
-            fmt(depth),
-            fmt(args.allowance)
+            "tool diameter {}, stepover {}",
+            u.length(s.diameter),
+            u.length(s.stepover)
         ),
         format!(
-            "feed {} mm/min, plunge {} mm/min, spindle {} rpm",
-            fmt(args.feed),
-            fmt(args.plunge_feed),
-            fmt(args.spindle)
+            "depth {} in {} of at most {}, allowance {}",
+            u.length(s.depth),
+            count(passes, "pass", "passes"),
+            u.length(s.step_down),
+            u.length(args.allowance)
+        ),
+        format!(
+            "feed {}, plunge {}, spindle {} rpm, wait {} s",
+            u.rate(s.feed),
+            u.rate(s.plunge_feed),
+            num(args.spindle, 3),
+            num(args.spindle_wait, 3)
+        ),
+        format!(
+            "safe height {}, feed height {}",
+            u.length(s.safe_z),
+            u.length(s.feed_height)
         ),
         match args.direction {
             DirectionArg::Climb => "climb milling, spindle clockwise M3: walls CCW, islands CW",
@@ -196,69 +439,106 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         }
         .to_string(),
         format!(
-            "pockets {}, loops {loops}, retracts {}",
-            analysis.regions.pockets.len(),
-            stats.retracts
+            "entry {}, at most {} degrees",
+            args.entry
+                .to_possible_value()
+                .map_or(String::new(), |v| v.get_name().to_owned()),
+            num(args.ramp_angle, 3)
         ),
         format!(
-            "cutting {:.1} mm, rapid {:.1} mm, time about {}",
-            stats.cut_length + stats.plunge_length,
-            stats.rapid_length,
-            fmt_time(seconds)
+            "{}, {}, retracts {}",
+            count(analysis.regions.pockets.len(), "pocket", "pockets"),
+            count(loops, "loop", "loops"),
+            figures.retracts
         ),
+        format!(
+            "cutting {}, rapid {}, time about {}",
+            u.distance(figures.feed_length),
+            u.distance(figures.rapid_length),
+            crate::display::time(figures.seconds)
+        ),
+        format!("time at rapids of {}", u.rate(s.rapid_rate)),
     ];
-    let settings = ProgramSettings {
-        units,
-        feed: args.feed,
-        plunge_feed: args.plunge_feed,
-        spindle: args.spindle,
-        safe_z: args.safe_z,
-        header,
-    };
-    let dialect = match args.post {
-        PostArg::Grbl => Dialect::Grbl,
-        PostArg::Linuxcnc => Dialect::LinuxCnc,
-        PostArg::Mach3 => Dialect::Mach3,
-    };
-    let program = write_gcode(&job.linked.toolpath, &settings, dialect);
-    if args.check {
-        let params = pocketeer::simulate::CheckParams {
-            tool_radius: 0.5 * diameter,
-            depth: Some(depth),
-            gouge_tolerance: 0.01,
-            leftover_tolerance: 0.05,
-        };
-        let read = pocketeer::simulate::read_program(&program)
-            .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
-        let report = pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, tol)
-            .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
-        eprint!("{}", crate::check::to_text(&report, &params));
-        if !report.passed {
-            return Err(Failure(format!(
-                "{name}: the check failed (gouge {:.4} mm, thickest leftover {:.4} mm); {} not written",
-                report.gouge,
-                report.thickest,
-                args.output.display()
-            )));
+    h.extend(command_line_comment());
+    h
+}
+
+/// The command line as comment lines of at most 72 characters.
+fn command_line_comment() -> Vec<String> {
+    let words: Vec<String> = std::env::args()
+        .enumerate()
+        .map(|(k, a)| {
+            let a = if k == 0 { "pocketeer".to_string() } else { a };
+            if a.is_empty() || a.contains(|c: char| c.is_whitespace() || c == '\'') {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            } else {
+                a
+            }
+        })
+        .collect();
+    let mut lines = vec![String::from("command:")];
+    for w in words {
+        let Some(last) = lines.last_mut() else { break };
+        if last.len() + 1 + w.len() > 72 && last.len() > 2 {
+            lines.push(format!("  {w}"));
+        } else {
+            last.push(' ');
+            last.push_str(&w);
         }
     }
-    if let Some(path) = &args.svg {
-        let doc = preview(&analysis, &job);
-        output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
+    lines
+}
+
+/// Replays the program against the drawing; refuses to write it when the check fails.
+fn self_check(
+    args: &PocketArgs,
+    s: &Settings,
+    analysis: &pocketeer::Analysis,
+    program: &str,
+) -> Result<(), Failure> {
+    let name = args.drawing.file.display();
+    let params = pocketeer::simulate::CheckParams {
+        tool_radius: 0.5 * s.diameter,
+        depth: Some(s.depth),
+        gouge_tolerance: 0.01,
+        leftover_tolerance: 0.05,
+        rapid_rate: s.rapid_rate,
+    };
+    let read = pocketeer::simulate::read_program(program)
+        .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
+    let report =
+        pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, &analysis.tolerance)
+            .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
+    eprint!("{}", crate::check::to_text(&report, &params));
+    if report.passed {
+        return Ok(());
     }
-    output::write_atomic(&args.output, program.as_bytes()).map_err(Failure)?;
-    for w in analysis.regions.warnings.iter().chain(&job.linked.warnings) {
-        eprintln!("pocketeer: warning: {w}");
+    Err(Failure(format!(
+        "{name}: the check failed (gouge {:.4} mm, thickest leftover {:.4} mm); {} not written",
+        report.gouge,
+        report.thickest,
+        output::describe(&args.output)
+    )))
+}
+
+/// Refuses outputs that would overwrite the drawing or each other, and a program written to a
+/// `.dxf` file (most likely a drawing given as `-o` by mistake) unless `--force`.
+fn guard_outputs(args: &PocketArgs) -> Result<(), Failure> {
+    let mut outputs = vec![("-o", args.output.as_path())];
+    if let Some(svg) = &args.svg {
+        outputs.push(("--svg", svg.as_path()));
     }
-    eprintln!(
-        "{} pocket(s), {loops} loop(s) in {passes} pass(es): cutting {:.1} mm, rapid {:.1} mm, {} retract(s), about {} (rapids at {RAPID_RATE} mm/min); written to {}",
-        analysis.regions.pockets.len(),
-        stats.cut_length + stats.plunge_length,
-        stats.rapid_length,
-        stats.retracts,
-        fmt_time(seconds),
-        args.output.display()
-    );
+    output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
+    let dxf = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
+    if dxf && !args.force {
+        return Err(Failure(format!(
+            "-o {}: a G-code program would be written to a .dxf file; choose a .nc file, or pass --force if that is really meant",
+            args.output.display()
+        )));
+    }
     Ok(())
 }
 
@@ -271,6 +551,7 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String 
         .flat_map(|p| p.contours().cloned())
         .collect();
     let (feeds, rapids) = svg::toolpath_segments(&job.linked.toolpath);
+    let ignored = crate::ignored_open_chains(analysis);
     svg::svg_document(&[
         svg::Layer {
             name: "drawing",
@@ -278,6 +559,13 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String 
             fill: "#dde6f0",
             contours: &walls,
             paths: &[],
+        },
+        svg::Layer {
+            name: "ignored-open-chains",
+            stroke: "#e07000",
+            fill: "none",
+            contours: &[],
+            paths: &ignored,
         },
         svg::Layer {
             name: "cuts",
@@ -300,19 +588,4 @@ fn file_name(p: &std::path::Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-/// A number without needless decimals.
-fn fmt(v: f64) -> String {
-    let t = format!("{v:.4}");
-    t.trim_end_matches('0').trim_end_matches('.').to_string()
-}
-
-fn fmt_time(seconds: f64) -> String {
-    let s = seconds.round() as u64;
-    if s >= 3600 {
-        format!("{}h{:02}m{:02}s", s / 3600, s / 60 % 60, s % 60)
-    } else {
-        format!("{}m{:02}s", s / 60, s % 60)
-    }
 }

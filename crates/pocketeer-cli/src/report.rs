@@ -14,6 +14,8 @@ pub struct Report {
     format: &'static str,
     units: String,
     declared_units: Option<String>,
+    /// The drawing's extent in mm: [min x, min y, max x, max y].
+    extent_mm: Option<[f64; 4]>,
     layers: Vec<LayerRow>,
     entities: BTreeMap<String, usize>,
     elements: usize,
@@ -71,6 +73,52 @@ fn suggest_tolerance(gap: f64) -> String {
     let value = ((gap / step).floor() + 1.0) * step;
     let decimals = (-step.log10()).round().max(0.0) as usize;
     format!("{value:.decimals$}mm")
+}
+
+/// Everything the importer has to say about the drawing, once each: what the reader met, the
+/// elements dropped, the gaps closed, the open chains ignored, the slivers removed, and how
+/// contours were nested. `inspect`, `offset` and `pocket` all print these.
+pub fn import_warnings(a: &Analysis) -> Vec<String> {
+    let d = &a.drawing;
+    let layer_name = |i: usize| d.layers.get(i).cloned().unwrap_or_default();
+    let mut warnings = d.warnings.clone();
+    let ch = &a.chains;
+    if ch.duplicates_dropped > 0 {
+        warnings.push(format!(
+            "{} dropped: drawn twice, cut once",
+            crate::display::count(ch.duplicates_dropped, "duplicate element", "duplicate elements")
+        ));
+    }
+    if ch.zero_length_dropped > 0 {
+        warnings.push(format!(
+            "{} dropped",
+            crate::display::count(
+                ch.zero_length_dropped,
+                "zero-length element",
+                "zero-length elements"
+            )
+        ));
+    }
+    warnings.extend(ch.warnings.iter().cloned());
+    for o in &ch.open {
+        let hint = match o.nearest_gap {
+            Some(g) if g <= 0.1 => format!(
+                "; the nearest free end is {g:.4} mm away: --join-tolerance {} would join it",
+                suggest_tolerance(g)
+            ),
+            Some(g) => format!("; the nearest free end is {g:.3} mm away"),
+            None => String::new(),
+        };
+        warnings.push(format!(
+            "open chain of {} on layer '{}' ignored: free ends at {} and {}{hint}",
+            crate::display::count(o.elements.len(), "element", "elements"),
+            layer_name(o.layer),
+            fmt_point(o.start),
+            fmt_point(o.end)
+        ));
+    }
+    warnings.extend(a.regions.warnings.iter().cloned());
+    warnings
 }
 
 /// Rounds to three decimals, as the report shows areas.
@@ -137,38 +185,16 @@ impl Report {
                     .collect(),
             })
             .collect();
-        let mut warnings = d.warnings.clone();
-        let ch = &a.chains;
-        if ch.duplicates_dropped > 0 {
-            warnings.push(format!("{} duplicate element(s) dropped", ch.duplicates_dropped));
-        }
-        if ch.zero_length_dropped > 0 {
-            warnings.push(format!(
-                "{} zero-length element(s) dropped",
-                ch.zero_length_dropped
-            ));
-        }
-        warnings.extend(ch.warnings.iter().cloned());
-        for o in &ch.open {
-            let hint = match o.nearest_gap {
-                Some(g) if g <= 0.1 => format!(
-                    "; the nearest free end is {g:.4} mm away: --join-tolerance {} would join it",
-                    suggest_tolerance(g)
-                ),
-                Some(g) => format!("; the nearest free end is {g:.3} mm away"),
-                None => String::new(),
-            };
-            warnings.push(format!(
-                "open chain of {} element(s) on layer '{}' ignored: free ends at {} and {}{hint}",
-                o.elements.len(),
-                layer_name(o.layer),
-                fmt_point(o.start),
-                fmt_point(o.end)
-            ));
-        }
-        warnings.extend(a.regions.warnings.iter().cloned());
+        let mut warnings = import_warnings(a);
+        warnings.extend(crate::sanity::size_warnings(a));
         Report {
             file: file.to_owned(),
+            extent_mm: (!d.extent.is_empty()).then_some([
+                d.extent.min.x,
+                d.extent.min.y,
+                d.extent.max.x,
+                d.extent.max.y,
+            ]),
             format: if d.binary { "binary DXF" } else { "ASCII DXF" },
             units: d.units.to_string(),
             declared_units: d.declared_units.map(|u| u.to_string()),
@@ -199,6 +225,10 @@ impl Report {
             .map_or("none declared".to_owned(), |u| format!("declared {u}"));
         let _ = writeln!(s, "file      {} ({})", self.file, self.format);
         let _ = writeln!(s, "units     {} ({declared}); figures below in mm", self.units);
+        let extent = self.extent_mm.map_or(pocketeer::geom::Aabb::EMPTY, |e| {
+            pocketeer::geom::Aabb::from_points(Point::new(e[0], e[1]), Point::new(e[2], e[3]))
+        });
+        let _ = writeln!(s, "extents   {}", crate::sanity::describe_extent(&extent));
         let layers: Vec<String> = self
             .layers
             .iter()

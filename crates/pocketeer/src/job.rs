@@ -24,7 +24,7 @@ pub enum JobError {
         diameter: f64,
         /// Number of pockets.
         pockets: usize,
-        /// Roughly the widest place found (twice the largest distance from a wall), mm.
+        /// The widest place (the diameter of the largest circle in any pocket), mm.
         widest: f64,
     },
 }
@@ -55,7 +55,7 @@ pub fn pocket_job(
         return Err(JobError::ToolFitsNowhere {
             diameter: 2.0 * clear.tool_radius,
             pockets: pockets.len(),
-            widest: 2.0 * widest(&regions, pockets),
+            widest: 2.0 * widest(pockets, tol)?,
         });
     }
     let jobs: Vec<(&Region, &ClearPlan)> = regions
@@ -77,25 +77,13 @@ pub fn pocket_job(
     Ok(Job { plans, linked })
 }
 
-/// The largest distance from the walls found among points sampled on a grid over each pocket.
-fn widest(regions: &[Region], pockets: &[Pocket]) -> f64 {
+/// The radius of the largest circle in any of the pockets.
+fn widest(pockets: &[Pocket], tol: &Tolerance) -> Result<f64, ClearError> {
     let mut best: f64 = 0.0;
-    for (r, p) in regions.iter().zip(pockets) {
-        let b = p.boundary.bbox();
-        let n = 64;
-        for i in 0..=n {
-            for j in 0..=n {
-                let q = crate::geom::Point::new(
-                    b.min.x + b.width() * i as f64 / n as f64,
-                    b.min.y + b.height() * j as f64 / n as f64,
-                );
-                if r.contains(q) {
-                    best = best.max(r.distance(q));
-                }
-            }
-        }
+    for p in pockets {
+        best = best.max(crate::offset::largest_inscribed_radius(p, tol).map_err(ClearError::from)?);
     }
-    best
+    Ok(best)
 }
 
 fn check_link(p: &LinkParams) -> Result<(), JobError> {

@@ -53,6 +53,7 @@ fn check(pocket: &Pocket, program: &str) -> CheckReport {
         depth: Some(2.0),
         gouge_tolerance: 0.01,
         leftover_tolerance: 0.05,
+        rapid_rate: pocketeer::simulate::check::RAPID_RATE,
     };
     check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default()).unwrap()
 }
@@ -69,7 +70,7 @@ fn our_programs_pass_at_40_and_83_percent() {
             r.thickest
         );
         assert!(
-            r.rapids_below_top.is_empty() && r.plunges.is_empty() && r.feedless.is_empty(),
+            r.rapids_into_stock.is_empty() && r.plunges.is_empty() && r.feedless.is_empty(),
             "{r:#?}"
         );
         assert!(
@@ -106,7 +107,7 @@ fn a_move_too_close_to_the_wall_is_found_with_its_depth_and_line() {
     let at = r.pockets[0].gouge_at.unwrap();
     assert_eq!(at.line, line);
     assert!((at.x - 2.8).abs() < 1e-6);
-    assert!(r.thickest <= 0.05 && r.rapids_below_top.is_empty());
+    assert!(r.thickest <= 0.05 && r.rapids_into_stock.is_empty());
 }
 
 #[test]
@@ -123,8 +124,8 @@ fn a_rapid_through_the_stock_is_reported() {
     let (program, line) = with_inserted(&our_program(&pocket(), 2.4), &["G0 X50 Y4", "G1 X3 Y3"]);
     let r = check(&pocket(), &program);
     assert!(!r.passed);
-    assert_eq!(r.rapids_below_top.len(), 1);
-    assert_eq!(r.rapids_below_top[0].line, line);
+    assert_eq!(r.rapids_into_stock.len(), 1);
+    assert_eq!(r.rapids_into_stock[0].line, line);
     assert!(r.gouge <= 0.01);
 }
 
@@ -145,7 +146,7 @@ fn a_missing_loop_leaves_material_and_nothing_else() {
     let r = check(&pocket(), &(lazy.join("\n") + "\n"));
     assert!(!r.passed);
     assert!(r.thickest > 0.5, "{}", r.thickest);
-    assert!(r.gouge <= 0.01 && r.rapids_below_top.is_empty() && r.plunges.is_empty());
+    assert!(r.gouge <= 0.01 && r.rapids_into_stock.is_empty() && r.plunges.is_empty());
 }
 
 #[test]
@@ -217,9 +218,9 @@ mod random {
             // the tool, cut off by a neck), once per depth pass.
             let announced = warnings.iter().filter(|w| w.contains("plunging")).count();
             prop_assert!(
-                r.rapids_below_top.is_empty() && r.plunges.len() <= announced && r.feedless.is_empty(),
+                r.rapids_into_stock.is_empty() && r.plunges.len() <= announced && r.feedless.is_empty(),
                 "rapids {:?} plunges {:?} feedless {:?}",
-                r.rapids_below_top,
+                r.rapids_into_stock,
                 r.plunges,
                 r.feedless
             );
@@ -247,6 +248,7 @@ fn a_wall_pass_0_011_too_close_fails_and_0_005_passes_the_gouge_tolerance() {
         depth: Some(1.0),
         gouge_tolerance: 0.01,
         leftover_tolerance: 1e9,
+        rapid_rate: pocketeer::simulate::check::RAPID_RATE,
     };
     let run = |inset: f64| {
         check_program(

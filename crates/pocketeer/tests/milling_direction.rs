@@ -99,6 +99,7 @@ fn program(c: &Case, direction: Direction) -> String {
         depth: c.depth,
         step_down: c.step_down,
         safe_z: 5.0,
+        feed_height: 1.0,
         direction,
         entry: Entry::Helix,
         ramp_angle: 3f64.to_radians(),

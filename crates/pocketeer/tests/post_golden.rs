@@ -6,7 +6,7 @@ use pocketeer::clear::ClearParams;
 use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
 use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
-use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::post::{write_gcode, Coolant, Dialect, ProgramSettings, ProgramUnits};
 
 fn program(dialect: Dialect, units: ProgramUnits) -> String {
     let p = Point::new;
@@ -29,6 +29,7 @@ fn program(dialect: Dialect, units: ProgramUnits) -> String {
         depth: 3.0,
         step_down: 1.5,
         safe_z: 5.0,
+        feed_height: 1.0,
         direction: Direction::Climb,
         entry: Entry::Helix,
         ramp_angle: 3f64.to_radians(),
@@ -41,6 +42,16 @@ fn program(dialect: Dialect, units: ProgramUnits) -> String {
         spindle: 16000.0,
         safe_z: 5.0,
         header: vec!["golden: 30 x 20 pocket, 6 mm island, 6 mm tool".into()],
+        // The controllers with a tool changer load tool 3 and switch the flood coolant on, and
+        // park away from the part; GRBL's programs keep the defaults.
+        tool: (dialect != Dialect::Grbl).then_some(3),
+        coolant: if dialect == Dialect::Grbl {
+            Coolant::Off
+        } else {
+            Coolant::Flood
+        },
+        park: (dialect != Dialect::Grbl).then_some(Point::new(-10.0, 40.0)),
+        ..ProgramSettings::default()
     };
     write_gcode(&job.linked.toolpath, &settings, dialect)
 }

@@ -124,7 +124,7 @@ pub enum ImportError {
     #[error(
         "the open chain of {elements} element(s) on layer '{layer}' (free ends at {} and {}) surrounds {surrounded} closed contour(s): it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
         fmt_point(*.start), fmt_point(*.end),
-        .gap.map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
+        .gap.filter(|g| *g <= 1.0).map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
     )]
     OpenOutline {
         /// Layer of the chain.

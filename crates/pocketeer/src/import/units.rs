@@ -82,6 +82,24 @@ impl Units {
     }
 }
 
+impl Units {
+    /// The unit's name in words (`millimetres`, `inches`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Units::Millimeters => "millimetres",
+            Units::Centimeters => "centimetres",
+            Units::Decimeters => "decimetres",
+            Units::Meters => "metres",
+            Units::Microns => "micrometres",
+            Units::Inches => "inches",
+            Units::Feet => "feet",
+            Units::Mils => "mils",
+            Units::Microinches => "microinches",
+            Units::Yards => "yards",
+        }
+    }
+}
+
 impl fmt::Display for Units {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.symbol())

@@ -59,6 +59,9 @@ pub struct LinkParams {
     pub step_down: f64,
     /// Height above the stock for rapid moves, mm.
     pub safe_z: f64,
+    /// How far above the stock (or above the floor already cut at that spot) a rapid descent
+    /// stops and the plunge feed takes over, mm.
+    pub feed_height: f64,
     /// Climb or conventional.
     pub direction: Direction,
     /// Helix, ramp or plunge.
@@ -75,9 +78,6 @@ pub struct Linked {
     /// Remarks, such as plunges where nothing else fitted.
     pub warnings: Vec<String>,
 }
-
-/// Height above the stock from which the tool goes down at the plunge feed.
-const APPROACH: f64 = 1.0;
 
 /// The Z of each depth pass: equal passes of at most `step_down`, the last at `-depth`.
 ///
@@ -231,10 +231,19 @@ impl<'a> Linker<'a> {
 
     /// From the safe height to `p` at the height where the stock begins (the previous floor).
     fn descend_to_floor(&mut self, p: Point) {
-        let approach = APPROACH.min(self.params.safe_z);
+        self.descend_to(p, self.z_top);
+    }
+
+    /// From the safe height down to `floor` at `p`, where the stock has been cut down to
+    /// `floor` (or `floor` is the stock top): rapid to the feed height above it, then at the
+    /// plunge feed. Every place the tool comes down in a part on a later pass was cleared to
+    /// the previous pass's floor by that pass (it clears everything the tool can reach in the
+    /// part), so the rapid stops short of the floor, not of the stock top.
+    fn descend_to(&mut self, p: Point, floor: f64) {
+        let approach = (floor + self.params.feed_height).min(self.params.safe_z);
         self.path.rapid(Point3::at(p, self.params.safe_z));
         self.path.rapid(Point3::at(p, approach));
-        self.path.line(Point3::at(p, self.z_top), Feed::Plunge);
+        self.path.line(Point3::at(p, floor), Feed::Plunge);
     }
 
     /// Back down after a retract within a part whose inside is already cut: straight down onto
@@ -257,10 +266,8 @@ impl<'a> Linker<'a> {
         }
         match best {
             Some((p, _)) if self.stays_inside(p, q, node.distance) => {
-                self.path.rapid(Point3::at(p, self.params.safe_z));
-                let approach = APPROACH.min(self.params.safe_z);
-                self.path.rapid(Point3::at(p, approach));
-                self.path.line(Point3::at(p, self.z), Feed::Plunge);
+                // The child's loop was cut at this pass's depth: down onto its floor.
+                self.descend_to(p, self.z);
                 self.path.line(Point3::at(q, self.z), Feed::Cut);
             }
             _ => self.enter(node, segments),
@@ -384,6 +391,7 @@ mod tests {
             depth: 2.0,
             step_down: 2.0,
             safe_z: 5.0,
+            feed_height: 1.0,
             direction: Direction::Climb,
             entry,
             ramp_angle: 3f64.to_radians(),

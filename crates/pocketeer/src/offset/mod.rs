@@ -293,6 +293,35 @@ pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Result<Vec<Con
     Region::new(pocket).offset(d, tol)
 }
 
+/// The radius of the largest circle inside `pocket` (clear of its walls and islands), within a
+/// millionth of it: the largest distance whose offset is not empty, found by halving the
+/// interval between 0 and half the pocket's narrower side. A tool of a larger radius fits
+/// nowhere; an offset by a larger distance has no loop.
+///
+/// ```
+/// use pocketeer::geom::{Contour, Point, Tolerance};
+/// use pocketeer::import::Pocket;
+/// use pocketeer::offset::largest_inscribed_radius;
+/// let p = Point::new;
+/// let boundary = Contour::polygon(&[p(0.0, 0.0), p(100.0, 0.0), p(100.0, 30.0), p(0.0, 30.0)]);
+/// let r = largest_inscribed_radius(&Pocket { boundary, islands: vec![] }, &Tolerance::default()).unwrap();
+/// assert!((r - 15.0).abs() < 1e-4);
+/// ```
+pub fn largest_inscribed_radius(pocket: &Pocket, tol: &Tolerance) -> Result<f64, OffsetError> {
+    let region = Region::new(pocket);
+    let b = pocket.boundary.bbox();
+    let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()) * (1.0 + 1e-9) + tol.eps);
+    while hi - lo > 1e-6 * hi.max(1e-3) {
+        let mid = 0.5 * (lo + hi);
+        if region.offset(mid, tol)?.is_empty() {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(lo)
+}
+
 /// The offset of one closed contour by `d`: inward for `d` > 0 (the contour's inside eroded),
 /// outward for `d` < 0 (its inside dilated). Loops are counter-clockwise around material,
 /// clockwise around holes.

@@ -10,6 +10,17 @@ impl Post for Grbl {
     fn comment(&self, text: &str) -> String {
         format!("({text})")
     }
+    fn tool_change(&self, n: u32) -> Vec<String> {
+        // GRBL 1.1 takes a T word but refuses M6: the tool is loaded by hand before the start.
+        vec![
+            self.comment(&format!("tool {n}: load it by hand, GRBL has no tool changer")),
+            format!("T{n}"),
+        ]
+    }
+    fn has_mist(&self) -> bool {
+        // M7 only in builds with ENABLE_M7, which the stock firmware is not.
+        false
+    }
     fn setup(&self) -> &'static [&'static str] {
         &["G90 G94 G17"]
     }

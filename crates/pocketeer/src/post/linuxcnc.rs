@@ -11,6 +11,13 @@ impl Post for LinuxCnc {
     fn comment(&self, text: &str) -> String {
         format!("({text})")
     }
+    fn tool_change(&self, n: u32) -> Vec<String> {
+        // The tool's length offset from the tool table comes with it.
+        vec![format!("T{n} M6"), format!("G43 H{n}")]
+    }
+    fn has_mist(&self) -> bool {
+        true
+    }
     fn setup(&self) -> &'static [&'static str] {
         &["G90 G94 G17 G91.1", "G40 G49 G80", "G64 P0.01"]
     }

@@ -10,6 +10,12 @@ impl Post for Mach3 {
     fn comment(&self, text: &str) -> String {
         format!("({text})")
     }
+    fn tool_change(&self, n: u32) -> Vec<String> {
+        vec![format!("T{n} M6"), format!("G43 H{n}")]
+    }
+    fn has_mist(&self) -> bool {
+        true
+    }
     fn setup(&self) -> &'static [&'static str] {
         &["G90 G94 G17 G91.1", "G40 G49 G80"]
     }

@@ -13,6 +13,19 @@ use crate::geom::{Point, Vector};
 use crate::toolpath::{half_turns, Feed, Move, Point3, Toolpath};
 use std::fmt::Write;
 
+/// Coolant switched on after the spindle starts and off at the end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Coolant {
+    /// None (no M7/M8 written; M9 neither).
+    #[default]
+    Off,
+    /// Flood coolant (M8).
+    Flood,
+    /// Mist coolant (M7). GRBL accepts M7 only when built with `ENABLE_M7`; its post writes a
+    /// comment instead.
+    Mist,
+}
+
 /// The controllers we write for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dialect {
@@ -48,12 +61,103 @@ pub struct ProgramSettings {
     pub safe_z: f64,
     /// Lines for the header comment (tool, stepover, statistics...).
     pub header: Vec<String>,
+    /// Seconds to dwell after starting the spindle, so that it reaches its speed before the
+    /// first cut (G4 P, in seconds: LinuxCNC, GRBL 1.1 and Mach3's default); 0 writes none.
+    pub spindle_wait: f64,
+    /// The tool to load before the spindle starts (`T n M6`; GRBL, which has no tool changer,
+    /// gets the `T` word and a comment), or none.
+    pub tool: Option<u32>,
+    /// Coolant during the program.
+    pub coolant: Coolant,
+    /// Where to move at the safe height after the spindle stops (XY, mm), or nowhere.
+    pub park: Option<Point>,
+}
+
+impl Default for ProgramSettings {
+    /// Millimetres, 1000 and 300 mm/min, 12000 rpm, 5 mm safe height, a 2 s spindle wait, no
+    /// tool change, no coolant, no park, no header.
+    fn default() -> ProgramSettings {
+        ProgramSettings {
+            units: ProgramUnits::Millimetres,
+            feed: 1000.0,
+            plunge_feed: 300.0,
+            spindle: 12000.0,
+            safe_z: 5.0,
+            header: Vec::new(),
+            spindle_wait: 2.0,
+            tool: None,
+            coolant: Coolant::Off,
+            park: None,
+        }
+    }
+}
+
+/// The figures of a program as written: lengths, retracts, dwells and time.
+///
+/// The first move only brings the tool from wherever it is to the start: its length is not
+/// known and is not counted (a reader of the program, such as `check`, cannot count it either).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Estimate {
+    /// Length of feed moves (cutting, plunging, ramping, leaving the stock), mm.
+    pub feed_length: f64,
+    /// Length of rapid moves, mm.
+    pub rapid_length: f64,
+    /// Rapid moves upwards.
+    pub retracts: usize,
+    /// Seconds of dwell.
+    pub dwell: f64,
+    /// Estimated machining time, seconds.
+    pub seconds: f64,
+}
+
+/// The figures of the program [`write_gcode`] writes for `path` with `s`, rapids at
+/// `rapid_rate` mm/min.
+///
+/// ```
+/// use pocketeer::post::{estimate, ProgramSettings};
+/// use pocketeer::toolpath::{Feed, Point3, Toolpath};
+/// let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+/// path.rapid(Point3::new(10.0, 0.0, 5.0)); // from an unknown place: not counted
+/// path.rapid(Point3::new(10.0, 0.0, 1.0));
+/// path.line(Point3::new(10.0, 0.0, -2.0), Feed::Plunge);
+/// path.line(Point3::new(40.0, 0.0, -2.0), Feed::Cut);
+/// let e = estimate(&path, &ProgramSettings::default(), 5000.0);
+/// // 3 mm down at 300 mm/min, 30 mm at 1000; rapids 4 mm down and 7 mm up at the end.
+/// assert_eq!((e.feed_length, e.rapid_length, e.retracts), (33.0, 11.0, 1));
+/// // The spindle's 2 s dwell counts too.
+/// assert!((e.seconds - (0.6 + 1.8 + 11.0 * 60.0 / 5000.0 + 2.0)).abs() < 1e-9);
+/// ```
+pub fn estimate(path: &Toolpath, s: &ProgramSettings, rapid_rate: f64) -> Estimate {
+    let stats = path.stats();
+    let mut e = Estimate {
+        feed_length: stats.cut_length + stats.plunge_length,
+        rapid_length: stats.rapid_length,
+        retracts: stats.retracts,
+        dwell: s.spindle_wait.max(0.0),
+        seconds: 0.0,
+    };
+    let mut end = path.position();
+    if end.z < s.safe_z {
+        e.rapid_length += s.safe_z - end.z;
+        e.retracts += 1;
+        end.z = s.safe_z;
+    }
+    if let Some(p) = s.park {
+        e.rapid_length += end.xy().distance(p);
+    }
+    e.seconds =
+        stats.seconds(s.feed, s.plunge_feed, f64::INFINITY) + 60.0 * e.rapid_length / rapid_rate + e.dwell;
+    e
 }
 
 /// What one controller needs at the start and end of a program.
 trait Post {
     /// A comment line holding `text`.
     fn comment(&self, text: &str) -> String;
+    /// The lines that load tool `n` (before the spindle starts).
+    fn tool_change(&self, n: u32) -> Vec<String>;
+    /// True when the controller takes M7 (mist coolant).
+    fn has_mist(&self) -> bool;
     /// Modal setup after the units word.
     fn setup(&self) -> &'static [&'static str];
     /// The program end.
@@ -90,9 +194,10 @@ fn clean(text: &str) -> String {
 /// path.line(Point3::new(10.0, 0.0, -1.0), Feed::Plunge);
 /// let settings = ProgramSettings {
 ///     units: ProgramUnits::Millimetres, feed: 1000.0, plunge_feed: 300.0, spindle: 12000.0,
-///     safe_z: 5.0, header: vec![],
+///     safe_z: 5.0, ..ProgramSettings::default()
 /// };
 /// let g = write_gcode(&path, &settings, Dialect::Grbl);
+/// assert!(g.contains("M3 S12000\nG4 P2\n"));
 /// assert!(g.contains("G0 X10.0000 Y0.0000\n"));
 /// assert!(g.contains("G1 Z-1.0000 F300\n"));
 /// ```
@@ -124,7 +229,23 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     let safe = w.num(s.safe_z);
     w.line(&format!("G0 Z{safe}"));
     w.at[2] = w.q(s.safe_z);
+    if let Some(n) = s.tool {
+        for l in post.tool_change(n) {
+            w.line(&l);
+        }
+    }
     w.line(&format!("M3 S{}", fmt_rate(s.spindle)));
+    if s.spindle_wait > 0.0 {
+        w.line(&format!("G4 P{}", fmt_rate(s.spindle_wait)));
+    }
+    match s.coolant {
+        Coolant::Off => {}
+        Coolant::Flood => w.line("M8"),
+        Coolant::Mist if post.has_mist() => w.line("M7"),
+        Coolant::Mist => {
+            w.line(&post.comment("mist coolant asked for: this controller has no M7, switch it on by hand"))
+        }
+    }
     let mut from = path.start;
     for m in &path.moves {
         match *m {
@@ -150,6 +271,12 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
         w.motion("G0", Point3::new(p.x, p.y, s.safe_z), None, "");
     }
     w.line("M5");
+    if s.coolant != Coolant::Off && (s.coolant != Coolant::Mist || post.has_mist()) {
+        w.line("M9");
+    }
+    if let Some(park) = s.park {
+        w.motion("G0", Point3::at(park, s.safe_z), None, "");
+    }
     w.line(post.end());
     w.out
 }
@@ -327,6 +454,7 @@ mod tests {
             spindle: 18000.0,
             safe_z: 5.0,
             header: vec!["tool (6 mm)".into()],
+            ..ProgramSettings::default()
         }
     }
 

@@ -17,7 +17,7 @@ use serde::Serialize;
 /// Chord error of every flattened arc, mm: five times below the tightest tolerance checked.
 pub const CHORD: f64 = 0.001;
 
-/// Rapid speed assumed for time estimates, mm/min.
+/// Rapid speed assumed for time estimates unless told, mm/min.
 pub const RAPID_RATE: f64 = 5000.0;
 
 /// What to check against.
@@ -31,6 +31,8 @@ pub struct CheckParams {
     pub gouge_tolerance: f64,
     /// Thickest leftover accepted, mm.
     pub leftover_tolerance: f64,
+    /// Rapid speed for the time estimate, mm/min.
+    pub rapid_rate: f64,
 }
 
 /// A place in the program: where and on which line.
@@ -77,9 +79,11 @@ pub struct CheckReport {
     pub final_depth: f64,
     /// Deepest Z the program reaches.
     pub deepest: f64,
-    /// Rapid moves below Z=0 (other than straight up out of the cut).
-    pub rapids_below_top: Vec<Place>,
-    /// Feed moves going straight down into stock not cut before at that depth.
+    /// Rapid moves through the stock: below Z=0 other than straight up out of the cut, or
+    /// straight down onto stock already cut deeper than where the rapid stops.
+    pub rapids_into_stock: Vec<Place>,
+    /// Feed moves going straight down below Z=0 where the tool disc had not been cut that
+    /// deep before.
     pub plunges: Vec<Place>,
     /// Feed moves before any feed rate was set.
     pub feedless: Vec<Place>,
@@ -89,7 +93,9 @@ pub struct CheckReport {
     pub rapid_length: f64,
     /// Rapid moves upwards.
     pub retracts: usize,
-    /// Estimated time, seconds (rapids at [`RAPID_RATE`]).
+    /// Seconds of dwell (G4).
+    pub dwell: f64,
+    /// Estimated time, seconds: feed moves at their feed, rapids at the rapid rate, dwells.
     pub seconds: f64,
     /// Length along the walls at the final depth by the side the material is on (right:
     /// climb milling with an M3 spindle).
@@ -98,7 +104,7 @@ pub struct CheckReport {
     pub gouge: f64,
     /// Thickest leftover over all pockets, mm.
     pub thickest: f64,
-    /// True when gouge and leftover are within the tolerances and no rapid goes below Z=0.
+    /// True when gouge and leftover are within the tolerances and no rapid goes into the stock.
     pub passed: bool,
     /// The area swept at the final depth, for drawing.
     #[serde(skip)]
@@ -128,13 +134,14 @@ pub fn check_program(
         pockets: Vec::new(),
         final_depth,
         deepest,
-        rapids_below_top: Vec::new(),
+        rapids_into_stock: Vec::new(),
         plunges: Vec::new(),
         feedless: Vec::new(),
         cut_length: 0.0,
         rapid_length: 0.0,
         retracts: 0,
-        seconds: 0.0,
+        dwell: program.dwell,
+        seconds: program.dwell,
         wall_sides: super::side::Sides::default(),
         gouge: 0.0,
         thickest: 0.0,
@@ -142,6 +149,7 @@ pub fn check_program(
         swept: Vec::new(),
     };
     let mut gouges: Vec<(f64, Option<Place>)> = vec![(0.0, None); pockets.len()];
+    let history = super::history::CutHistory::new(moves, r);
     for (k, m) in moves.iter().enumerate() {
         let len = m.length();
         let place = |p: Point| Place {
@@ -151,15 +159,17 @@ pub fn check_program(
         };
         if m.motion == Motion::Rapid {
             report.rapid_length += len;
-            report.seconds += 60.0 * len / RAPID_RATE;
+            report.seconds += 60.0 * len / params.rapid_rate;
             if m.to.z > m.from.z {
                 report.retracts += 1;
             }
-            // A rapid straight up out of a cut is a retract through air; any other rapid that
-            // is below Z=0 at either end moves through, or down into, the stock.
-            let straight_up = m.from.xy().distance(m.to.xy()) <= 1e-6 && m.to.z >= m.from.z;
-            if m.from.z.min(m.to.z) < -1e-9 && !straight_up {
-                report.rapids_below_top.push(place(m.to.xy()));
+            // A rapid straight up out of a cut is a retract through air, and one straight down
+            // onto stock cut deeper than where it stops moves through air too; any other rapid
+            // that is below Z=0 at either end moves through, or down into, the stock.
+            let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6;
+            let through_air = vertical && (m.to.z >= m.from.z || history.cleared(k, m.to.xy(), m.to.z, r));
+            if m.from.z.min(m.to.z) < -1e-9 && !through_air {
+                report.rapids_into_stock.push(place(m.to.xy()));
             }
             continue;
         }
@@ -211,7 +221,7 @@ pub fn check_program(
         }
         // A feed move straight down below Z=0 must land where the tool has cut that deep.
         let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6 && m.to.z < m.from.z;
-        if vertical && m.to.z < 0.0 && !cut_before(&moves[..k], m.to) {
+        if vertical && m.to.z < 0.0 && !history.cleared(k, m.to.xy(), m.to.z, r) {
             report.plunges.push(place(m.to.xy()));
         }
     }
@@ -229,22 +239,8 @@ pub fn check_program(
     }
     report.passed = report.gouge <= params.gouge_tolerance
         && report.thickest <= params.leftover_tolerance
-        && report.rapids_below_top.is_empty();
+        && report.rapids_into_stock.is_empty();
     Ok(report)
-}
-
-/// True when a feed move before has passed within a micrometre of `p` at `p`'s depth or deeper.
-fn cut_before(before: &[ProgramMove], p: Point3) -> bool {
-    before.iter().any(|m| {
-        m.motion != Motion::Rapid && {
-            let seg = m.footprint();
-            let d = crate::geom::point_distance(&seg, p.xy());
-            d <= 1e-3 && {
-                let t = crate::geom::closest_param(&seg, p.xy());
-                m.point_at(t).z <= p.z + 1e-4
-            }
-        }
-    })
 }
 
 /// The area swept by the tool at `depth` or deeper (a program may cut below the depth asked

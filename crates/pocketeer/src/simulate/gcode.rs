@@ -133,12 +133,14 @@ impl ProgramMove {
 pub struct Program {
     /// The moves in order.
     pub moves: Vec<ProgramMove>,
+    /// Seconds of dwell (G4 P, in seconds as LinuxCNC, GRBL 1.1 and Mach3's default read it).
+    pub dwell: f64,
 }
 
 /// Reads `text`: G0/G1/G2/G3 (modal), G17 (G18/G19 refused), G20/G21, G90/G91, G90.1/G91.1,
 /// I/J or R arcs (helical when Z changes), comments in parentheses or after `;`, N numbers, `%`
-/// lines; F is read (per minute), other words (M, S, T, P, G4, G40, G49, G54, G64, G80, G94)
-/// are skipped. The start position is unknown until X, Y and Z have been set.
+/// lines; F is read (per minute), G4 P adds its seconds to the dwell, other words (M, S, T,
+/// G40, G43, G49, G54, G64, G80, G94) are skipped. The start position is unknown until X, Y and Z have been set.
 ///
 /// ```
 /// use pocketeer::simulate::gcode::{read_program, Motion};
@@ -235,12 +237,14 @@ impl State {
     fn apply(&mut self, words: &[(char, f64)], line: usize, out: &mut Program) -> Result<(), GcodeError> {
         let (mut target, mut ij, mut r) = ([None::<f64>; 3], [None::<f64>; 2], None::<f64>);
         let mut motion_here = None;
+        let (mut dwell, mut p) = (false, None::<f64>);
         for &(l, v) in words {
             match l {
                 'G' => {
                     let code = (v * 10.0).round() as i64;
                     match code {
                         0 | 10 | 20 | 30 => motion_here = Some((code / 10) as u32),
+                        40 => dwell = true,
                         170 => {}
                         180 | 190 => {
                             return Err(GcodeError::Plane {
@@ -263,9 +267,14 @@ impl State {
                 'I' => ij[0] = Some(v),
                 'J' => ij[1] = Some(v),
                 'R' => r = Some(v),
+                'P' => p = Some(v),
                 'F' => self.feed = Some(v * self.unit),
                 _ => {}
             }
+        }
+        if dwell {
+            out.dwell += p.unwrap_or(0.0).max(0.0);
+            return Ok(());
         }
         if let Some(m) = motion_here {
             self.motion = Some(m);

@@ -3,6 +3,7 @@
 
 pub mod check;
 pub mod gcode;
+pub mod history;
 pub mod polygon;
 pub mod side;
 

@@ -15,6 +15,7 @@ pub fn settings() -> ProgramSettings {
         spindle: 10000.0,
         safe_z: 5.0,
         header: vec![],
+        ..ProgramSettings::default()
     }
 }
 
@@ -39,6 +40,7 @@ pub fn our_program(
         depth,
         step_down: diameter,
         safe_z: 5.0,
+        feed_height: 1.0,
         direction: Direction::Climb,
         entry,
         ramp_angle: 3f64.to_radians(),

@@ -108,6 +108,22 @@ pub fn read(program: &str) -> Result<Vec<Read>, String> {
     Ok(out)
 }
 
+/// True when every sample of the tool disc of radius `r` at `p` (its centre and a ring just
+/// inside its edge) lies within `r` of one of `cuts` where that cut was at `z` or below: the
+/// stock there was cut down past `z`. Brute force over every cut.
+fn disc_cut_before(cuts: &[&Read], p: Point, z: f64, r: f64) -> bool {
+    let ring = (0..12).map(|k| {
+        let a = std::f64::consts::TAU * k as f64 / 12.0;
+        p + pocketeer::geom::Vector::from_angle(a) * (0.95 * r)
+    });
+    std::iter::once(p).chain(ring).all(|q| {
+        cuts.iter().any(|c| {
+            let t = pocketeer::geom::closest_param(&c.segment, q);
+            c.segment.point_at(t).distance(q) <= r + 1e-3 && c.z0 + (c.z1 - c.z0) * t <= z + 1e-4
+        })
+    })
+}
+
 /// What a replay measured.
 #[derive(Debug)]
 pub struct Measured {
@@ -148,13 +164,22 @@ pub fn measure(moves: &[Read], targets: &[Target], r: f64, depth: f64, h: f64, s
     };
     let wall_indexes: Vec<SegmentIndex> = targets.iter().map(|t| SegmentIndex::new(t.walls)).collect();
     let mut floor: Vec<Segment> = Vec::new();
+    let mut below_top: Vec<&Read> = Vec::new();
     for mv in moves {
         m.deepest = m.deepest.min(mv.z1);
         if mv.rapid {
-            if mv.z0.min(mv.z1) < -1e-9 {
+            // Straight up out of the cut, or straight down onto stock cut deeper than where it
+            // stops, a rapid moves through air; any other below Z=0 moves through the stock.
+            let vertical = mv.segment.length() <= 1e-6;
+            let p = mv.segment.start();
+            let onto_cut = vertical && mv.z1 < mv.z0 && disc_cut_before(&below_top, p, mv.z1, r);
+            if mv.z0.min(mv.z1) < -1e-9 && !(vertical && mv.z1 >= mv.z0) && !onto_cut {
                 m.rapids_below_top += 1;
             }
             continue;
+        }
+        if mv.z0.min(mv.z1) < 0.0 {
+            below_top.push(mv);
         }
         if mv.z0.min(mv.z1) < -1e-9 {
             let mut gouge = f64::INFINITY;

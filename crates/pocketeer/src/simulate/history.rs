@@ -1,0 +1,123 @@
+//! Where the tool has cut so far, and how deep: whether the stock under a tool disc was cut
+//! down to a height before a given move, so that a rapid or a plunge coming straight down there
+//! is known to meet no stock.
+//!
+//! The feed moves below the stock top are sampled along their footprints into a grid of cells
+//! the size of the tool; a query looks at the cells around the place asked about and measures
+//! the moves found there exactly.
+
+use super::gcode::{Motion, ProgramMove};
+use crate::geom::{closest_param, point_distance, Point, Vector};
+use std::collections::HashMap;
+
+/// The feed moves of a program below the stock top, indexed by place.
+pub struct CutHistory<'a> {
+    moves: &'a [ProgramMove],
+    cell: f64,
+    cells: HashMap<(i64, i64), Vec<u32>>,
+}
+
+/// How far a move may be from a sample of the disc and still have cut there, beyond the radius,
+/// mm: the programs' rounding.
+const SLACK: f64 = 1e-3;
+
+impl<'a> CutHistory<'a> {
+    /// Indexes the feed moves of `moves` that go below Z=0, for a tool of radius `r`.
+    pub fn new(moves: &'a [ProgramMove], r: f64) -> CutHistory<'a> {
+        let cell = r.max(1e-3);
+        let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
+        for (k, m) in moves.iter().enumerate() {
+            if m.motion == Motion::Rapid || m.from.z.min(m.to.z) >= 0.0 {
+                continue;
+            }
+            let f = m.footprint();
+            let n = ((f.length() / (0.5 * cell)).ceil() as usize).clamp(1, 1 << 20);
+            let mut last = None;
+            for j in 0..=n {
+                let key = key(f.point_at(j as f64 / n as f64), cell);
+                if last != Some(key) {
+                    let list = cells.entry(key).or_default();
+                    if list.last() != Some(&(k as u32)) {
+                        list.push(k as u32);
+                    }
+                    last = Some(key);
+                }
+            }
+        }
+        CutHistory { moves, cell, cells }
+    }
+
+    /// True when, before move `before`, the tool of radius `r` had cut the whole disc of
+    /// radius `r` around `p` down to `z` or deeper: every sample of the disc (its centre and
+    /// two rings) lies within the radius of a feed move that passed there at `z` or below.
+    pub fn cleared(&self, before: usize, p: Point, z: f64, r: f64) -> bool {
+        let mut samples = vec![p];
+        for (ring, n) in [(0.5, 8), (0.98, 16)] {
+            for k in 0..n {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                samples.push(p + Vector::from_angle(a) * (ring * r));
+            }
+        }
+        samples.iter().all(|&q| self.cut_at(before, q, z, r))
+    }
+
+    /// True when a feed move before `before` passed within `r` of `q` at `z` or below.
+    fn cut_at(&self, before: usize, q: Point, z: f64, r: f64) -> bool {
+        let (cx, cy) = key(q, self.cell);
+        // Samples lie half a cell apart: a move within r of q has one within 1.25 cells.
+        let reach = ((r + 0.25 * self.cell) / self.cell).ceil() as i64 + 1;
+        for dx in -reach..=reach {
+            for dy in -reach..=reach {
+                let Some(list) = self.cells.get(&(cx + dx, cy + dy)) else {
+                    continue;
+                };
+                for &k in list.iter().take_while(|&&k| (k as usize) < before) {
+                    let m = &self.moves[k as usize];
+                    let f = m.footprint();
+                    if point_distance(&f, q) <= r + SLACK && m.point_at(closest_param(&f, q)).z <= z + 1e-4 {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
+fn key(p: Point, cell: f64) -> (i64, i64) {
+    ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::toolpath::Point3;
+
+    fn feed(from: (f64, f64, f64), to: (f64, f64, f64)) -> ProgramMove {
+        ProgramMove {
+            line: 1,
+            motion: Motion::Line,
+            from: Point3::new(from.0, from.1, from.2),
+            to: Point3::new(to.0, to.1, to.2),
+            feed: Some(1000.0),
+        }
+    }
+
+    #[test]
+    fn a_disc_is_cleared_where_passes_cover_it_at_that_depth() {
+        // Three passes 2 mm apart at Z-2 along x, a 3 mm tool radius.
+        let moves = vec![
+            feed((0.0, -2.0, -2.0), (40.0, -2.0, -2.0)),
+            feed((40.0, 0.0, -2.0), (0.0, 0.0, -2.0)),
+            feed((0.0, 2.0, -2.0), (40.0, 2.0, -2.0)),
+        ];
+        let h = CutHistory::new(&moves, 3.0);
+        let p = Point::new(20.0, 0.0);
+        assert!(h.cleared(3, p, -1.0, 3.0));
+        assert!(h.cleared(3, p, -2.0, 3.0));
+        // Not as deep as asked; not yet cut before the second move; not over the cut.
+        assert!(!h.cleared(3, p, -3.0, 3.0));
+        assert!(!h.cleared(1, p, -1.0, 3.0));
+        assert!(!h.cleared(3, Point::new(20.0, 6.0), -1.0, 3.0));
+    }
+}
