@@ -377,7 +377,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     let u = s.units;
     eprintln!(
         "drawing {}",
-        crate::sanity::describe_extent(&analysis.drawing.extent)
+        crate::sanity::describe_extent(&analysis.drawing.extent, u)
     );
     eprintln!(
         "{}, {} in {}: cutting {}, rapid {}, {}, about {} (rapids at {}); written to {}",

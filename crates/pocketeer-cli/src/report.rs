@@ -228,7 +228,11 @@ impl Report {
         let extent = self.extent_mm.map_or(pocketeer::geom::Aabb::EMPTY, |e| {
             pocketeer::geom::Aabb::from_points(Point::new(e[0], e[1]), Point::new(e[2], e[3]))
         });
-        let _ = writeln!(s, "extents   {}", crate::sanity::describe_extent(&extent));
+        let _ = writeln!(
+            s,
+            "extents   {}",
+            crate::sanity::describe_extent(&extent, crate::display::JobUnits::Millimetres)
+        );
         let layers: Vec<String> = self
             .layers
             .iter()

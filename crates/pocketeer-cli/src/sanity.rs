@@ -4,6 +4,7 @@
 //! tool. Neither is an error in the file, so the job goes on, but the user is told, with the
 //! unit the drawing was read in and the `--units` that would read it otherwise.
 
+use crate::display::JobUnits;
 use pocketeer::geom::Aabb;
 use pocketeer::import::Units;
 use pocketeer::Analysis;
@@ -22,20 +23,21 @@ pub fn pockets_extent(a: &Analysis) -> Aabb {
         .fold(Aabb::EMPTY, |b, p| b.union(&p.boundary.bbox()))
 }
 
-/// `W x H mm` of `b`, with its corners.
-pub fn describe_extent(b: &Aabb) -> String {
+/// `W x H mm` of `b` (in `units`), with its corners.
+pub fn describe_extent(b: &Aabb, units: JobUnits) -> String {
     if b.is_empty() {
         return "nothing".to_string();
     }
-    let f = |v: f64| crate::display::fixed(v, 3);
+    let f = |v: f64| crate::display::fixed(v / units.mm(), 3);
     format!(
-        "{} x {} mm, from ({}, {}) to ({}, {})",
+        "{} x {} {u}, from ({}, {}) to ({}, {})",
         f(b.width()),
         f(b.height()),
         f(b.min.x),
         f(b.min.y),
         f(b.max.x),
-        f(b.max.y)
+        f(b.max.y),
+        u = units.symbol()
     )
 }
 

@@ -111,7 +111,11 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
     let units = options.units.or(declared_units).unwrap_or(Units::Millimeters);
     if let (Some(d), Some(o)) = (declared_units, options.units) {
         if d != o {
-            warnings.push(format!("the drawing declares {d}; read as {o} as asked"));
+            warnings.push(format!(
+                "the drawing declares {}; read in {} as asked",
+                d.name(),
+                o.name()
+            ));
         }
     }
 

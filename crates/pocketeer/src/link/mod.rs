@@ -156,19 +156,34 @@ impl<'a> Linker<'a> {
         self.path.position().xy()
     }
 
-    /// Cuts the part `n` and everything inside it.
+    /// Cuts the part `n` and everything inside it: each part after the parts inside it, the
+    /// nearest uncut child first. The tree is walked with a stack of its own, not by recursion:
+    /// a pocket thousands of stepovers wide nests as many parts.
     fn cut(&mut self, n: usize) {
         let plan = self.plan();
-        let node = &plan.nodes[n];
-        let mut children = node.children.clone();
-        while !children.is_empty() {
+        // Each entry: a part, and its children not cut yet.
+        let mut stack: Vec<(usize, Vec<usize>)> = vec![(n, plan.nodes[n].children.clone())];
+        while let Some((part, children)) = stack.last_mut() {
+            if children.is_empty() {
+                let part = *part;
+                stack.pop();
+                self.cut_part(part);
+                continue;
+            }
             let here = self.here();
-            let k = nearest(&children, |&c| {
+            let k = nearest(children, |&c| {
                 let b = plan.nodes[c].outer.bbox();
                 b.min.midpoint(b.max).distance(here)
             });
-            self.cut(children.swap_remove(k));
+            let c = children.swap_remove(k);
+            stack.push((c, plan.nodes[c].children.clone()));
         }
+    }
+
+    /// Cuts the paths of the part `n` itself, its children being cut: clean-up paths and loops
+    /// round islands nearest first, the outer loop last.
+    fn cut_part(&mut self, n: usize) {
+        let node = &self.plan().nodes[n];
         let mut items: Vec<Path> = node.cleanups.clone();
         items.extend(node.holes.iter().map(|h| loop_path(&h.segments)));
         let mut first = node.children.is_empty();
