@@ -145,3 +145,107 @@ fn climb_keeps_the_material_on_the_right_and_conventional_on_the_left() {
         }
     }
 }
+
+/// With an allowance, the finishing pass at the walls is met and left along tangent arcs:
+/// every feed move at the final depth that arrives at a wall (ends a tool radius from it,
+/// coming from farther away) is an arc whose direction there runs along the wall, and so is
+/// every move that leaves one.
+#[test]
+fn the_finishing_pass_enters_and_leaves_the_walls_on_tangent_arcs() {
+    for c in cases()
+        .into_iter()
+        .filter(|c| c.allowance > 0.0)
+        .chain(std::iter::once(Case {
+            name: "rectangle with round islands and an allowance",
+            pocket: Pocket {
+                boundary: rect(0.0, 0.0, 80.0, 50.0),
+                islands: vec![circle_cw(25.0, 25.0, 8.0), circle_cw(55.0, 25.0, 6.0)],
+            },
+            stepover: 2.4,
+            allowance: 0.3,
+            depth: 2.0,
+            step_down: 2.0,
+        }))
+    {
+        let walls: Vec<Segment> = c.pocket.contours().flat_map(|k| k.segments.clone()).collect();
+        let index = pocketeer::geom::SegmentIndex::new(&walls);
+        for direction in [Direction::Climb, Direction::Conventional] {
+            let moves = replay::read(&program(&c, direction)).expect("program reads back");
+            let (mut arrivals, mut departures) = (0, 0);
+            for mv in moves
+                .iter()
+                .filter(|m| !m.rapid && m.z0 == -c.depth && m.z1 == -c.depth)
+            {
+                let (a, b) = (mv.segment.start(), mv.segment.end());
+                let (da, db) = (index.distance(a), index.distance(b));
+                for (at, t, from, to, count) in
+                    [(b, 1.0, da, db, &mut arrivals), (a, 0.0, db, da, &mut departures)]
+                {
+                    if (to - 3.0).abs() > 1e-3 || from < 3.0 + 1e-2 {
+                        continue;
+                    }
+                    *count += 1;
+                    assert!(
+                        matches!(mv.segment, Segment::Arc(_)),
+                        "{} {direction:?}: straight onto or off the wall at {at:?}, line {}",
+                        c.name,
+                        mv.line
+                    );
+                    let (w, _) = index.nearest(at).expect("walls");
+                    let along = mv.segment.tangent_at(t).normalized().expect("a direction");
+                    let normal = (w - at).normalized().expect("off the wall");
+                    // Within the program's rounding (0.0001 mm on a lead of about a millimetre).
+                    assert!(
+                        along.dot(normal).abs() < 1e-3,
+                        "{} {direction:?}: not tangent at {at:?}, line {}: {:?} {}",
+                        c.name,
+                        mv.line,
+                        mv.segment,
+                        along.dot(normal)
+                    );
+                }
+            }
+            assert!(
+                arrivals > 0 && departures > 0,
+                "{} {direction:?}: {arrivals} {departures}",
+                c.name
+            );
+        }
+    }
+}
+
+/// Both directions, the leads onto the finishing pass and the re-entries above the previous
+/// pass's floor keep every program clean: no gouge, no leftover, no rapid through the stock,
+/// no plunge into uncut stock.
+#[test]
+fn every_case_passes_the_check_both_ways() {
+    use pocketeer::simulate::{check_program, read_program, CheckParams};
+    for c in cases() {
+        for direction in [Direction::Climb, Direction::Conventional] {
+            let program = read_program(&program(&c, direction)).expect("program reads back");
+            let params = CheckParams {
+                tool_radius: 3.0,
+                depth: Some(c.depth),
+                gouge_tolerance: 0.01,
+                leftover_tolerance: 0.05,
+                rapid_rate: 5000.0,
+            };
+            let r = check_program(
+                std::slice::from_ref(&c.pocket),
+                &program,
+                &params,
+                &Tolerance::default(),
+            )
+            .expect("check");
+            assert!(
+                r.passed && r.plunges.is_empty() && r.rapids_into_stock.is_empty(),
+                "{} {direction:?}: gouge {}, thickest {}, plunges {:?}, rapids {:?}",
+                c.name,
+                r.gouge,
+                r.thickest,
+                r.plunges,
+                r.rapids_into_stock
+            );
+        }
+    }
+}

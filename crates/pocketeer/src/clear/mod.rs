@@ -101,6 +101,9 @@ pub struct ClearPlan {
     pub roots: Vec<usize>,
     /// The level distances used, mm.
     pub distances: Vec<f64>,
+    /// The material the roughing levels leave on the walls for level 0, the finishing loops
+    /// at the tool radius, mm (0: no finishing pass).
+    pub allowance: f64,
 }
 
 impl ClearPlan {
@@ -151,6 +154,7 @@ pub fn plan_region(
         .unzip();
     let distances = distances[..loops.len()].to_vec();
     let mut plan = tree::build(loops, &distances);
+    plan.allowance = params.allowance;
     residue::add_cleanups(&mut plan, region, &sources, params, tol)?;
     Ok(plan)
 }

@@ -204,7 +204,13 @@ impl<'a> Linker<'a> {
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
-        let segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
+        let mut segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
+        if item.closed && node.level == 0 && self.plan().allowance > 0.0 {
+            if let Some((lead_in, lead_out)) = self.leads(&segments, node.distance) {
+                segments.insert(0, lead_in);
+                segments.push(lead_out);
+            }
+        }
         let q = segments[0].start();
         if enter || !self.down {
             self.retract();
@@ -217,6 +223,41 @@ impl<'a> Linker<'a> {
         }
         walk::follow(&mut self.path, &segments, self.z);
         self.down = true;
+    }
+
+    /// Tangent arcs onto and off a finishing loop (`segments`, closed, at `d` from the walls):
+    /// the tool meets the wall along the loop's tangent and leaves it the same way, never
+    /// straight into it. Each is a quarter circle on the loop's free side (away from the
+    /// wall), of a radius that starts its lead-in where the roughing has already cut (the
+    /// allowance away, at least half the tool's radius, at most its radius), halved while an
+    /// arc would come nearer than `d` to a wall; `None` when none fits.
+    fn leads(&self, segments: &[Segment], d: f64) -> Option<(Segment, Segment)> {
+        use crate::geom::Arc;
+        use std::f64::consts::FRAC_PI_2;
+        let first = segments.first()?;
+        let last = segments.last()?;
+        let (q_in, q_out) = (first.start(), last.end());
+        let t_in = first.tangent_at(0.0).normalized()?;
+        let t_out = last.tangent_at(1.0).normalized()?;
+        // The loops run with the wall on their right when climbing, on their left otherwise.
+        let left = self.params.direction == Direction::Climb;
+        let side = |t: crate::geom::Vector| if left { t.perp() } else { -t.perp() };
+        let sign = if left { 1.0 } else { -1.0 };
+        let r = self.params.tool_radius;
+        let mut rho = self.plan().allowance.max(0.5 * r).min(r);
+        for _ in 0..4 {
+            let c_in = q_in + side(t_in) * rho;
+            let lead_in = Segment::Arc(Arc::new(c_in, rho, (-t_in).angle(), sign * FRAC_PI_2));
+            let c_out = q_out + side(t_out) * rho;
+            let lead_out = Segment::Arc(Arc::new(c_out, rho, (-side(t_out)).angle(), sign * FRAC_PI_2));
+            let slack = 1e-6 * d.max(1.0) + 10.0 * self.tol.eps;
+            let fits = |s: &Segment| !self.region().segment_nearer_than(s, d - slack, self.tol);
+            if fits(&lead_in) && fits(&lead_out) {
+                return Some((lead_in, lead_out));
+            }
+            rho *= 0.5;
+        }
+        None
     }
 
     /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from
