@@ -268,6 +268,14 @@ impl Settings {
             PostArg::Linuxcnc => Dialect::LinuxCnc,
             PostArg::Mach3 => Dialect::Mach3,
         };
+        if let Some(n) = args
+            .tool_number
+            .filter(|&n| args.post == PostArg::Grbl && n > 255)
+        {
+            return Err(Failure(format!(
+                "--tool-number {n}: GRBL takes tool numbers up to 255"
+            )));
+        }
         if args.post == PostArg::Grbl && args.coolant == CoolantArg::Mist {
             return Err(Failure(
                 "--coolant mist: GRBL 1.1 takes M7 only when built with ENABLE_M7, which its stock firmware is not; use --coolant flood (M8)".into(),
@@ -405,7 +413,7 @@ fn header(
     figures: &Estimate,
 ) -> Vec<String> {
     let u = s.units;
-    let mut h = vec![
+    let h = vec![
         format!("pocketeer {}", env!("CARGO_PKG_VERSION")),
         format!("drawing {}", file_name(&args.drawing.file)),
         format!("units {}: {}", u.symbol(), crate::sanity::unit_origin(analysis)),
@@ -459,8 +467,40 @@ fn header(
         ),
         format!("time at rapids of {}", u.rate(s.rapid_rate)),
     ];
-    h.extend(command_line_comment());
-    h
+    let mut lines: Vec<String> = h.iter().flat_map(|l| wrap(l, 72)).collect();
+    lines.extend(command_line_comment());
+    lines
+}
+
+/// `text` in lines of at most `width` characters, broken between words; the lines after the
+/// first indented by two spaces. A word too long for a line (a long path) is cut into pieces
+/// on lines of their own, each but the last ending in `\`.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    let piece = width.saturating_sub(3).max(8);
+    for word in text.split(' ') {
+        let chars: Vec<char> = word.chars().collect();
+        if chars.len() > piece {
+            let pieces: Vec<String> = chars.chunks(piece).map(|c| c.iter().collect()).collect();
+            let n = pieces.len();
+            for (k, p) in pieces.into_iter().enumerate() {
+                lines.push(format!("  {p}{}", if k + 1 < n { "\\" } else { "" }));
+            }
+            continue;
+        }
+        let w = word;
+        let Some(last) = lines.last_mut() else { break };
+        if !last.trim().is_empty() && last.len() + 1 + w.len() > width {
+            lines.push(format!("  {w}"));
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(w);
+        }
+    }
+    lines.retain(|l| !l.is_empty());
+    lines
 }
 
 /// The command line as comment lines of at most 72 characters.
@@ -476,17 +516,7 @@ fn command_line_comment() -> Vec<String> {
             }
         })
         .collect();
-    let mut lines = vec![String::from("command:")];
-    for w in words {
-        let Some(last) = lines.last_mut() else { break };
-        if last.len() + 1 + w.len() > 72 && last.len() > 2 {
-            lines.push(format!("  {w}"));
-        } else {
-            last.push(' ');
-            last.push_str(&w);
-        }
-    }
-    lines
+    wrap(&format!("command: {}", words.join(" ")), 72)
 }
 
 /// Replays the program against the drawing; refuses to write it when the check fails.
@@ -588,4 +618,32 @@ fn file_name(p: &std::path::Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+
+    #[test]
+    fn header_lines_wrap_between_words_and_cut_long_words() {
+        assert_eq!(wrap("a short line", 72), vec!["a short line"]);
+        let long =
+            "units mm: the drawing was read in millimetres as asked (--units), though it declares metres";
+        let lines = wrap(long, 72);
+        assert!(
+            lines.len() == 2 && lines.iter().all(|l| l.len() <= 72),
+            "{lines:?}"
+        );
+        assert_eq!(
+            lines.join(" ").split_whitespace().collect::<Vec<_>>(),
+            long.split(' ').collect::<Vec<_>>()
+        );
+        let path = format!("command: pocketeer pocket /{}/plate.dxf -o x.nc", "d".repeat(100));
+        let lines = wrap(&path, 72);
+        assert!(lines.iter().all(|l| l.len() <= 72), "{lines:?}");
+        assert!(
+            lines[1].ends_with('\\') && lines.last().is_some_and(|l| l.ends_with("-o x.nc")),
+            "{lines:?}"
+        );
+    }
 }

@@ -466,6 +466,17 @@ fn the_program_has_what_a_machinist_expects() {
         !g.contains("G4") && !g.contains("M6") && g.contains("\nT3\n"),
         "GRBL: no M6 {g}"
     );
+    // Every line fits GRBL's 80 characters, even with a long path and a unit override.
+    let long = dir
+        .path()
+        .join("a folder with a rather long name for the drawings of this shop");
+    std::fs::create_dir(&long).unwrap();
+    let far = long.join("plate.dxf");
+    std::fs::copy(&drawing, &far).unwrap();
+    let res = pocket(&far, &nc, &["--units", "mm", "--spindle", "18000"]);
+    assert!(res.status.success(), "{}", text(&res.stderr));
+    let g = std::fs::read_to_string(&nc).unwrap();
+    assert!(g.lines().all(|l| l.len() <= 80), "{g}");
     let res = pocket(&drawing, &nc, &["--coolant", "mist"]);
     assert!(text(&res.stderr).contains("ENABLE_M7"), "{}", text(&res.stderr));
 }
