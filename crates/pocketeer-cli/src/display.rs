@@ -87,10 +87,8 @@ pub fn fixed(v: f64, decimals: usize) -> String {
     }
 }
 
-/// `1 pass`, `2 passes`.
-pub fn count(n: usize, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
-}
+/// `1 pass`, `2 passes`: the library's plural, for the CLI's messages too.
+pub use pocketeer::import::error::fmt_count as count;
 
 /// A duration as `4m07s`, or `2h05m00s` from an hour on.
 pub fn time(seconds: f64) -> String {

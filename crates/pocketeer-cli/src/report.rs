@@ -1,5 +1,6 @@
 //! What `inspect` prints, as one serialisable value rendered as text or JSON.
 
+use crate::display::count;
 use pocketeer::geom::Point;
 use pocketeer::import::error::fmt_point;
 use pocketeer::Analysis;
@@ -86,13 +87,13 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
     if ch.duplicates_dropped > 0 {
         warnings.push(format!(
             "{} dropped: drawn twice, cut once",
-            crate::display::count(ch.duplicates_dropped, "duplicate element", "duplicate elements")
+            count(ch.duplicates_dropped, "duplicate element", "duplicate elements")
         ));
     }
     if ch.zero_length_dropped > 0 {
         warnings.push(format!(
             "{} dropped",
-            crate::display::count(
+            count(
                 ch.zero_length_dropped,
                 "zero-length element",
                 "zero-length elements"
@@ -111,7 +112,7 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
         };
         warnings.push(format!(
             "open chain of {} on layer '{}' ignored: free ends at {} and {}{hint}",
-            crate::display::count(o.elements.len(), "element", "elements"),
+            count(o.elements.len(), "element", "elements"),
             layer_name(o.layer),
             fmt_point(o.start),
             fmt_point(o.end)
@@ -250,20 +251,20 @@ impl Report {
         for (i, c) in self.contours.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "  {:>3}  closed  level {}  {:<15}  area {:>14.3} mm²  {:>5} elements  layer {}",
+                "  {:>3}  closed  level {}  {:<15}  area {:>14.3} mm²  {:>14}  layer {}",
                 i + 1,
                 c.level,
                 c.role,
                 c.area_mm2,
-                c.elements,
+                count(c.elements, "element", "elements"),
                 c.layer
             );
         }
         for o in &self.open_chains {
             let _ = writeln!(
                 s,
-                "       open    {} elements  layer {}  free ends {} and {}",
-                o.elements,
+                "       open    {}  layer {}  free ends {} and {}",
+                count(o.elements, "element", "elements"),
                 o.layer,
                 fmt_point(o.start),
                 fmt_point(o.end)
@@ -273,18 +274,19 @@ impl Report {
         for (i, p) in self.pockets.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "  {:>3}  area {:.3} mm² (boundary {:.3} mm², {} elements), {} island(s)",
+                "  {:>3}  area {:.3} mm² (boundary {:.3} mm², {}), {}",
                 i + 1,
                 p.area_mm2,
                 p.boundary_area_mm2,
-                p.boundary_elements,
-                p.islands.len()
+                count(p.boundary_elements, "element", "elements"),
+                count(p.islands.len(), "island", "islands")
             );
             for isl in &p.islands {
                 let _ = writeln!(
                     s,
-                    "         island  area {:.3} mm²  {} elements",
-                    isl.area_mm2, isl.elements
+                    "         island  area {:.3} mm²  {}",
+                    isl.area_mm2,
+                    count(isl.elements, "element", "elements")
                 );
             }
         }

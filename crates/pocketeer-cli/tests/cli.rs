@@ -10,7 +10,7 @@ fn inspect_prints_the_bracket() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("pockets   1"), "{text}");
-    assert!(text.contains("3 island(s)"), "{text}");
+    assert!(text.contains("3 islands"), "{text}");
     assert!(text.contains("9569.097"), "{text}");
 }
 
@@ -180,7 +180,7 @@ fn pocket_refusals_name_the_problem_and_keep_the_old_program() {
     let nc = dir.path().join("old.nc");
     std::fs::write(&nc, "(a good old program)\n").unwrap();
     let cases: [(&[&str], &str); 4] = [
-        (&["--tool-diameter", "60"], "fits in none"),
+        (&["--tool-diameter", "60"], "fits nowhere in the pocket"),
         (
             &["--tool-diameter", "6", "--stepover", "7"],
             "less than the tool diameter",

@@ -128,7 +128,7 @@ fn an_inch_plate_under_a_millimetre_header_is_smaller_than_the_tool_and_says_so(
     let err = text(&res.stderr);
     assert_eq!(res.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("fits in none") && err.contains("the widest place is 3.000 mm"),
+        err.contains("fits nowhere in the pocket") && err.contains("the widest place is 3.000 mm"),
         "{err}"
     );
     assert!(

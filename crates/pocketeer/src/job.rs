@@ -18,7 +18,8 @@ pub enum JobError {
     #[error("{0}")]
     BadParameter(String),
     /// The tool fits in no pocket.
-    #[error("a {diameter} mm tool fits in none of the {pockets} pocket(s): the widest place is {widest:.3} mm across")]
+    #[error("a {diameter} mm tool fits {}: the widest place is {widest:.3} mm across",
+        if *.pockets == 1 { "nowhere in the pocket".to_string() } else { format!("in none of the {} pockets", .pockets) })]
     ToolFitsNowhere {
         /// Tool diameter, mm.
         diameter: f64,

@@ -61,8 +61,8 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
             String::new()
         };
         return Err(ImportError::NoClosedContour(format!(
-            "{} open chain(s), free ends {}{more}; close the outline or raise --join-tolerance",
-            chains.open.len(),
+            "{}, free ends {}{more}; close the outline or raise --join-tolerance",
+            import::error::fmt_count(chains.open.len(), "open chain", "open chains"),
             ends.join(", ")
         )));
     }

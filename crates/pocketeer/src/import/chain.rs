@@ -85,8 +85,8 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
         if contour.signed_area().abs() <= tol.join * length && runs_back_over_itself(&contour.segments, tol) {
             // Drawn there and back again: a line, not an outline.
             out.warnings.push(format!(
-                "a closed polyline of {} element(s) at {} encloses no area; ignored",
-                members.len(),
+                "a closed polyline of {} at {} encloses no area; ignored",
+                crate::import::error::fmt_count(members.len(), "element", "elements"),
                 fmt_point(contour.segments[0].start())
             ));
             continue;
@@ -123,8 +123,8 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     out.largest_gap = nodes.largest_gap;
     if nodes.gaps_closed > 0 {
         out.warnings.push(format!(
-            "{} gap(s) between end points closed, the largest {:.6} mm at {}",
-            nodes.gaps_closed,
+            "{} between end points closed, the largest {:.6} mm at {}",
+            crate::import::error::fmt_count(nodes.gaps_closed, "gap", "gaps"),
             nodes.largest_gap,
             fmt_point(nodes.largest_gap_at)
         ));

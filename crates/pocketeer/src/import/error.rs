@@ -54,6 +54,17 @@ pub fn fmt_number(x: f64) -> String {
     }
 }
 
+/// `n` things with the right plural: `1 element`, `3 elements`.
+///
+/// ```
+/// use pocketeer::import::error::fmt_count;
+/// assert_eq!(fmt_count(1, "pass", "passes"), "1 pass");
+/// assert_eq!(fmt_count(0, "element", "elements"), "0 elements");
+/// ```
+pub fn fmt_count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// Formats a point as `(x, y)` with four decimals.
 pub fn fmt_point(p: Point) -> String {
     let f = |x: f64| {
@@ -122,8 +133,9 @@ pub enum ImportError {
     NoClosedContour(String),
     /// An open chain surrounds closed contours: most likely a pocket outline that does not close.
     #[error(
-        "the open chain of {elements} element(s) on layer '{layer}' (free ends at {} and {}) surrounds {surrounded} closed contour(s): it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
-        fmt_point(*.start), fmt_point(*.end),
+        "the open chain of {} on layer '{layer}' (free ends at {} and {}) surrounds {}: it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
+        fmt_count(*.elements, "element", "elements"), fmt_point(*.start), fmt_point(*.end),
+        fmt_count(*.surrounded, "closed contour", "closed contours"),
         .gap.filter(|g| *g <= 1.0).map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
     )]
     OpenOutline {

@@ -210,7 +210,8 @@ pub fn find_pockets(
         let (stitched, lost) = stitch(pieces, tol);
         if lost > 0 {
             warnings.push(format!(
-                "{lost} piece(s) of crossing contours could not be joined into loops and were left out"
+                "{} of crossing contours could not be joined into loops and were left out",
+                crate::import::error::fmt_count(lost, "piece", "pieces")
             ));
         }
         loops.extend(stitched);
