@@ -423,9 +423,10 @@ fn header(
             u.length(s.stepover)
         ),
         format!(
-            "depth {} in {} of at most {}, allowance {}",
+            "depth {} in {} of {}, step-down at most {}, allowance {}",
             u.length(s.depth),
             count(passes, "pass", "passes"),
+            u.length(s.depth / passes.max(1) as f64),
             u.length(s.step_down),
             u.length(args.allowance)
         ),

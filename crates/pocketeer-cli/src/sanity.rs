@@ -46,7 +46,7 @@ pub fn unit_origin(a: &Analysis) -> String {
     let d = &a.drawing;
     match d.declared_units {
         Some(declared) if declared == d.units => {
-            format!("the drawing declares {} ($INSUNITS)", declared.name())
+            format!("the drawing declares {} in $INSUNITS", declared.name())
         }
         Some(declared) => format!(
             "the drawing was read in {} as asked (--units), though it declares {}",
