@@ -214,42 +214,6 @@ fn pocket_refusals_name_the_problem_and_keep_the_old_program() {
 }
 
 #[test]
-fn an_inch_drawing_gives_an_inch_program() {
-    let dir = tempfile::tempdir().unwrap();
-    let drawing = dir.path().join("plate.dxf");
-    let square: &[(f64, f64)] = &[(0.0, 0.0), (4.0, 0.0), (4.0, 3.0), (0.0, 3.0)];
-    std::fs::write(&drawing, dxf(&[(square, true)], &[(2.0, 1.5, 0.5)], 1)).unwrap();
-    let nc = dir.path().join("plate.nc");
-    let res = run(&[
-        "pocket",
-        drawing.to_str().unwrap(),
-        "--tool-diameter",
-        "0.25in",
-        "--stepover",
-        "40%",
-        "--depth",
-        "0.1in",
-        "-o",
-        nc.to_str().unwrap(),
-    ]);
-    assert!(res.status.success(), "{}", String::from_utf8_lossy(&res.stderr));
-    let g = std::fs::read_to_string(&nc).unwrap();
-    assert!(g.contains("\nG20\n"));
-    assert!(g.contains("Z-0.10000"), "the depth in inches");
-    // Round inch defaults (40 in/min, not 1000 mm/min as 39.37); every X stays inside the
-    // 4 in plate, a tool radius in.
-    assert!(g.contains(" F40\n"), "{g}");
-    assert!(g.contains("G0 Z0.20000\n"), "{g}");
-    for x in g
-        .lines()
-        .filter_map(|l| l.split(' ').find_map(|w| w.strip_prefix('X')))
-    {
-        let x: f64 = x.parse().unwrap();
-        assert!((0.125 - 1e-4..=3.875 + 1e-4).contains(&x), "X{x}");
-    }
-}
-
-#[test]
 fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
     let dir = tempfile::tempdir().unwrap();
     let nc = dir.path().join("keep.nc");

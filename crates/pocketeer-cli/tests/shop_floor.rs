@@ -298,6 +298,15 @@ fn an_inch_job_speaks_inches_with_round_defaults() {
         !g.contains("F11.811") && !g.contains("Z0.19685") && !g.contains(" mm"),
         "{g}"
     );
+    assert!(g.contains("Z-0.10000"), "the depth in inches");
+    // Every X stays inside the 4 in plate, a tool radius in.
+    for x in g
+        .lines()
+        .filter_map(|l| l.split(' ').find_map(|w| w.strip_prefix('X')))
+    {
+        let x: f64 = x.parse().unwrap();
+        assert!((0.125 - 1e-4..=3.875 + 1e-4).contains(&x), "X{x}");
+    }
 }
 
 #[test]
