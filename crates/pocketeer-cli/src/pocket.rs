@@ -383,10 +383,15 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     after.extend(crate::sanity::time_warning(&analysis, figures.seconds));
     crate::print_warnings(&after);
     let u = s.units;
-    eprintln!(
-        "drawing {}",
-        crate::sanity::describe_extent(&analysis.drawing.extent, u)
-    );
+    let extent = &analysis.drawing.extent;
+    match u {
+        JobUnits::Millimetres => eprintln!("drawing {}", crate::sanity::describe_extent(extent, u)),
+        JobUnits::Inches => eprintln!(
+            "drawing {} ({})",
+            crate::sanity::describe_extent(extent, u),
+            crate::sanity::describe_extent(extent, JobUnits::Millimetres)
+        ),
+    }
     eprintln!(
         "{}, {} in {}: cutting {}, rapid {}, {}, about {} (rapids at {}); written to {}",
         count(analysis.regions.pockets.len(), "pocket", "pockets"),

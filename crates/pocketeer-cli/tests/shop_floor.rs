@@ -278,8 +278,12 @@ fn an_inch_job_speaks_inches_with_round_defaults() {
     let err = text(&res.stderr);
     assert!(res.status.success(), "{err}");
     assert!(
-        err.contains(" in, rapid ") && !err.contains(" mm"),
+        err.contains(" in, rapid ") && !err.lines().last().unwrap_or_default().contains(" mm"),
         "the summary in inches: {err}"
+    );
+    assert!(
+        err.contains("(101.600 x 76.200 mm, from"),
+        "the extents in mm too: {err}"
     );
     assert!(err.contains("drawing 4.000 x 3.000 in"), "{err}");
     let g = std::fs::read_to_string(&nc).unwrap();
