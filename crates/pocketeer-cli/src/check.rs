@@ -192,12 +192,6 @@ fn preview(
     use pocketeer::export::svg;
     use pocketeer::geom::{Arc, Contour, Point, Segment};
     use pocketeer::simulate::gcode::Motion;
-    let walls: Vec<Contour> = analysis
-        .regions
-        .pockets
-        .iter()
-        .flat_map(|p| p.contours().cloned())
-        .collect();
     let polys = |shapes: &[Vec<Vec<[f64; 2]>>]| -> Vec<Contour> {
         shapes
             .iter()
@@ -216,9 +210,7 @@ fn preview(
         .map(|m| vec![m.footprint()])
         .filter(|s| s[0].length() > 0.0)
         .collect();
-    let size = walls
-        .iter()
-        .fold(pocketeer::geom::Aabb::EMPTY, |b, c| b.union(&c.bbox()));
+    let size = crate::sanity::pockets_extent(analysis);
     let mark = 0.01 * size.width().max(size.height()).max(1.0);
     let ring = |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), mark))]);
     let gouges: Vec<Contour> = report
@@ -233,55 +225,44 @@ fn preview(
         .filter(|p| p.thickest > 0.001)
         .filter_map(|p| p.thickest_at.map(|a| ring(a.x, a.y)))
         .collect();
-    svg::svg_document(&[
-        svg::Layer {
-            name: "drawing",
-            stroke: "black",
-            fill: "#dde6f0",
-            contours: &walls,
-            paths: &[],
-        },
-        svg::Layer {
-            name: "ignored-open-chains",
-            stroke: "#e07000",
-            fill: "none",
-            contours: &[],
-            paths: &crate::ignored_open_chains(analysis),
-        },
-        svg::Layer {
-            name: "swept",
-            stroke: "none",
-            fill: "#9cc3ea",
-            contours: &swept,
-            paths: &[],
-        },
-        svg::Layer {
-            name: "path",
-            stroke: "#2060c0",
-            fill: "none",
-            contours: &[],
-            paths: &path,
-        },
-        svg::Layer {
-            name: "leftover",
-            stroke: "#d03030",
-            fill: "#f08080",
-            contours: &leftover,
-            paths: &[],
-        },
-        svg::Layer {
-            name: "gouge",
-            stroke: "#c000c0",
-            fill: "none",
-            contours: &gouges,
-            paths: &[],
-        },
-        svg::Layer {
-            name: "thickest-leftover",
-            stroke: "#d07000",
-            fill: "none",
-            contours: &thick,
-            paths: &[],
-        },
-    ])
+    crate::preview::document(
+        analysis,
+        &[
+            svg::Layer {
+                name: "swept",
+                stroke: "none",
+                fill: "#9cc3ea",
+                contours: &swept,
+                paths: &[],
+            },
+            svg::Layer {
+                name: "path",
+                stroke: "#2060c0",
+                fill: "none",
+                contours: &[],
+                paths: &path,
+            },
+            svg::Layer {
+                name: "leftover",
+                stroke: "#d03030",
+                fill: "#f08080",
+                contours: &leftover,
+                paths: &[],
+            },
+            svg::Layer {
+                name: "gouge",
+                stroke: "#c000c0",
+                fill: "none",
+                contours: &gouges,
+                paths: &[],
+            },
+            svg::Layer {
+                name: "thickest-leftover",
+                stroke: "#d07000",
+                fill: "none",
+                contours: &thick,
+                paths: &[],
+            },
+        ],
+    )
 }

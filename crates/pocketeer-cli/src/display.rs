@@ -104,6 +104,53 @@ pub fn time(seconds: f64) -> String {
     }
 }
 
+/// `text` in lines of at most `width` characters, broken between words; the lines after the
+/// first indented by two spaces. A word too long for a line (a long path) is cut into pieces
+/// on lines of their own, each but the last ending in `\`.
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    let piece = width.saturating_sub(3).max(8);
+    for word in text.split(' ') {
+        let chars: Vec<char> = word.chars().collect();
+        if chars.len() > piece {
+            let pieces: Vec<String> = chars.chunks(piece).map(|c| c.iter().collect()).collect();
+            let n = pieces.len();
+            for (k, p) in pieces.into_iter().enumerate() {
+                lines.push(format!("  {p}{}", if k + 1 < n { "\\" } else { "" }));
+            }
+            continue;
+        }
+        let w = word;
+        let Some(last) = lines.last_mut() else { break };
+        if !last.trim().is_empty() && last.len() + 1 + w.len() > width {
+            lines.push(format!("  {w}"));
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(w);
+        }
+    }
+    lines.retain(|l| !l.is_empty());
+    lines
+}
+
+/// The command line as comment lines of at most 72 characters.
+pub fn command_line_comment() -> Vec<String> {
+    let words: Vec<String> = std::env::args()
+        .enumerate()
+        .map(|(k, a)| {
+            let a = if k == 0 { "pocketeer".to_string() } else { a };
+            if a.is_empty() || a.contains(|c: char| c.is_whitespace() || c == '\'') {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            } else {
+                a
+            }
+        })
+        .collect();
+    wrap(&format!("command: {}", words.join(" ")), 72)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,5 +171,28 @@ mod tests {
         assert_eq!(inch.rate(1016.0), "40 in/min");
         assert_eq!(JobUnits::Millimetres.rate(1000.0), "1000 mm/min");
         assert_eq!(inch.distance(254.0), "10.000 in");
+    }
+
+    #[test]
+    fn header_lines_wrap_between_words_and_cut_long_words() {
+        assert_eq!(wrap("a short line", 72), vec!["a short line"]);
+        let long =
+            "units mm: the drawing was read in millimetres as asked (--units), though it declares metres";
+        let lines = wrap(long, 72);
+        assert!(
+            lines.len() == 2 && lines.iter().all(|l| l.len() <= 72),
+            "{lines:?}"
+        );
+        assert_eq!(
+            lines.join(" ").split_whitespace().collect::<Vec<_>>(),
+            long.split(' ').collect::<Vec<_>>()
+        );
+        let path = format!("command: pocketeer pocket /{}/plate.dxf -o x.nc", "d".repeat(100));
+        let lines = wrap(&path, 72);
+        assert!(lines.iter().all(|l| l.len() <= 72), "{lines:?}");
+        assert!(
+            lines[1].ends_with('\\') && lines.last().is_some_and(|l| l.ends_with("-o x.nc")),
+            "{lines:?}"
+        );
     }
 }

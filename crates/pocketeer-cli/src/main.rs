@@ -5,6 +5,7 @@ mod display;
 mod length;
 mod output;
 mod pocket;
+mod preview;
 mod report;
 mod sanity;
 
@@ -155,35 +156,16 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     let text = dxf::write_dxf(&layered, analysis.drawing.units);
     output::write_output(&args.output, text.as_bytes()).map_err(Failure)?;
     if let Some(path) = &args.svg {
-        let walls: Vec<pocketeer::geom::Contour> = analysis
-            .regions
-            .pockets
-            .iter()
-            .flat_map(|p| p.contours().cloned())
-            .collect();
-        let doc = svg::svg_document(&[
-            svg::Layer {
-                name: "drawing",
-                stroke: "black",
-                fill: "#dde6f0",
-                contours: &walls,
-                paths: &[],
-            },
-            svg::Layer {
-                name: "ignored-open-chains",
-                stroke: "#e07000",
-                fill: "none",
-                contours: &[],
-                paths: &ignored_open_chains(&analysis),
-            },
-            svg::Layer {
+        let doc = preview::document(
+            &analysis,
+            &[svg::Layer {
                 name: "offset",
                 stroke: "#d03030",
                 fill: "none",
                 contours: &loops,
                 paths: &[],
-            },
-        ]);
+            }],
+        );
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
     eprintln!(
@@ -201,16 +183,6 @@ fn print_warnings(warnings: &[String]) {
     for w in warnings {
         eprintln!("pocketeer: warning: {w}");
     }
-}
-
-/// The elements of the open chains ignored under `--ignore-open`, one path each, for previews.
-fn ignored_open_chains(a: &pocketeer::Analysis) -> Vec<Vec<pocketeer::geom::Segment>> {
-    a.chains
-        .open
-        .iter()
-        .flat_map(|o| o.elements.iter().filter_map(|&e| a.drawing.elements.get(e)))
-        .map(|e| vec![e.segment])
-        .collect()
 }
 
 /// Writes to standard output; a reader that stops early (`| head`) is not an error.

@@ -473,56 +473,9 @@ fn header(
         ),
         format!("time at rapids of {}", u.rate(s.rapid_rate)),
     ];
-    let mut lines: Vec<String> = h.iter().flat_map(|l| wrap(l, 72)).collect();
-    lines.extend(command_line_comment());
+    let mut lines: Vec<String> = h.iter().flat_map(|l| crate::display::wrap(l, 72)).collect();
+    lines.extend(crate::display::command_line_comment());
     lines
-}
-
-/// `text` in lines of at most `width` characters, broken between words; the lines after the
-/// first indented by two spaces. A word too long for a line (a long path) is cut into pieces
-/// on lines of their own, each but the last ending in `\`.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    let piece = width.saturating_sub(3).max(8);
-    for word in text.split(' ') {
-        let chars: Vec<char> = word.chars().collect();
-        if chars.len() > piece {
-            let pieces: Vec<String> = chars.chunks(piece).map(|c| c.iter().collect()).collect();
-            let n = pieces.len();
-            for (k, p) in pieces.into_iter().enumerate() {
-                lines.push(format!("  {p}{}", if k + 1 < n { "\\" } else { "" }));
-            }
-            continue;
-        }
-        let w = word;
-        let Some(last) = lines.last_mut() else { break };
-        if !last.trim().is_empty() && last.len() + 1 + w.len() > width {
-            lines.push(format!("  {w}"));
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(w);
-        }
-    }
-    lines.retain(|l| !l.is_empty());
-    lines
-}
-
-/// The command line as comment lines of at most 72 characters.
-fn command_line_comment() -> Vec<String> {
-    let words: Vec<String> = std::env::args()
-        .enumerate()
-        .map(|(k, a)| {
-            let a = if k == 0 { "pocketeer".to_string() } else { a };
-            if a.is_empty() || a.contains(|c: char| c.is_whitespace() || c == '\'') {
-                format!("'{}'", a.replace('\'', "'\\''"))
-            } else {
-                a
-            }
-        })
-        .collect();
-    wrap(&format!("command: {}", words.join(" ")), 72)
 }
 
 /// Replays the program against the drawing; refuses to write it when the check fails.
@@ -580,76 +533,30 @@ fn guard_outputs(args: &PocketArgs) -> Result<(), Failure> {
 
 fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String {
     use pocketeer::export::svg;
-    let walls: Vec<pocketeer::geom::Contour> = analysis
-        .regions
-        .pockets
-        .iter()
-        .flat_map(|p| p.contours().cloned())
-        .collect();
     let (feeds, rapids) = svg::toolpath_segments(&job.linked.toolpath);
-    let ignored = crate::ignored_open_chains(analysis);
-    svg::svg_document(&[
-        svg::Layer {
-            name: "drawing",
-            stroke: "black",
-            fill: "#dde6f0",
-            contours: &walls,
-            paths: &[],
-        },
-        svg::Layer {
-            name: "ignored-open-chains",
-            stroke: "#e07000",
-            fill: "none",
-            contours: &[],
-            paths: &ignored,
-        },
-        svg::Layer {
-            name: "cuts",
-            stroke: "#2060c0",
-            fill: "none",
-            contours: &[],
-            paths: &feeds,
-        },
-        svg::Layer {
-            name: "rapids",
-            stroke: "#d03030",
-            fill: "none",
-            contours: &[],
-            paths: &rapids,
-        },
-    ])
+    crate::preview::document(
+        analysis,
+        &[
+            svg::Layer {
+                name: "cuts",
+                stroke: "#2060c0",
+                fill: "none",
+                contours: &[],
+                paths: &feeds,
+            },
+            svg::Layer {
+                name: "rapids",
+                stroke: "#d03030",
+                fill: "none",
+                contours: &[],
+                paths: &rapids,
+            },
+        ],
+    )
 }
 
 fn file_name(p: &std::path::Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::wrap;
-
-    #[test]
-    fn header_lines_wrap_between_words_and_cut_long_words() {
-        assert_eq!(wrap("a short line", 72), vec!["a short line"]);
-        let long =
-            "units mm: the drawing was read in millimetres as asked (--units), though it declares metres";
-        let lines = wrap(long, 72);
-        assert!(
-            lines.len() == 2 && lines.iter().all(|l| l.len() <= 72),
-            "{lines:?}"
-        );
-        assert_eq!(
-            lines.join(" ").split_whitespace().collect::<Vec<_>>(),
-            long.split(' ').collect::<Vec<_>>()
-        );
-        let path = format!("command: pocketeer pocket /{}/plate.dxf -o x.nc", "d".repeat(100));
-        let lines = wrap(&path, 72);
-        assert!(lines.iter().all(|l| l.len() <= 72), "{lines:?}");
-        assert!(
-            lines[1].ends_with('\\') && lines.last().is_some_and(|l| l.ends_with("-o x.nc")),
-            "{lines:?}"
-        );
-    }
 }

@@ -4,6 +4,7 @@ use crate::geom::{Aabb, Contour, Segment};
 use std::fmt::Write;
 
 /// A set of contours drawn in one style.
+#[derive(Clone, Copy)]
 pub struct Layer<'a> {
     /// Name shown as the group's id.
     pub name: &'a str,

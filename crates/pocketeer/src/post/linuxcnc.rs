@@ -12,8 +12,7 @@ impl Post for LinuxCnc {
         format!("({text})")
     }
     fn tool_change(&self, n: u32) -> Vec<String> {
-        // The tool's length offset from the tool table comes with it.
-        vec![format!("T{n} M6"), format!("G43 H{n}")]
+        super::change_tool_with_length_offset(n)
     }
     fn has_mist(&self) -> bool {
         true

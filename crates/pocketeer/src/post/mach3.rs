@@ -11,7 +11,7 @@ impl Post for Mach3 {
         format!("({text})")
     }
     fn tool_change(&self, n: u32) -> Vec<String> {
-        vec![format!("T{n} M6"), format!("G43 H{n}")]
+        super::change_tool_with_length_offset(n)
     }
     fn has_mist(&self) -> bool {
         true

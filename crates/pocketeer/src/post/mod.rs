@@ -164,6 +164,12 @@ trait Post {
     fn end(&self) -> &'static str;
 }
 
+/// `T n M6` and the tool's length offset from the machine's tool table (`G43 H n`), as
+/// controllers with a tool changer take them.
+fn change_tool_with_length_offset(n: u32) -> Vec<String> {
+    vec![format!("T{n} M6"), format!("G43 H{n}")]
+}
+
 fn post(d: Dialect) -> &'static dyn Post {
     match d {
         Dialect::Grbl => &grbl::Grbl,

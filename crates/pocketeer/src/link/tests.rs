@@ -1,0 +1,230 @@
+//! The linker's unit tests: gouge-free moves, entries, retracts and the milling side.
+use super::*;
+use crate::clear::{plan_pocket, ClearParams};
+use crate::geom::{point_distance, Contour};
+use crate::import::Pocket;
+use crate::toolpath::Move;
+
+fn params(entry: Entry) -> LinkParams {
+    LinkParams {
+        tool_radius: 3.0,
+        depth: 2.0,
+        step_down: 2.0,
+        safe_z: 5.0,
+        feed_height: 1.0,
+        direction: Direction::Climb,
+        entry,
+        ramp_angle: 3f64.to_radians(),
+    }
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
+    let p = Point::new;
+    Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
+}
+
+fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, Region) {
+    let tol = Tolerance::default();
+    let clear = ClearParams {
+        tool_radius: 3.0,
+        stepover,
+        allowance: 0.0,
+    };
+    let plan = plan_pocket(pocket, &clear, &tol).unwrap();
+    let region = Region::new(pocket);
+    let l = link(&[(&region, &plan)], &params(entry), &tol);
+    (l, region)
+}
+
+/// Every feed move below the stock top keeps the tool centre at least the radius from the
+/// walls (lines exactly, arcs by dense samples).
+fn assert_no_gouge(path: &Toolpath, region: &Region) {
+    let tol = Tolerance::default();
+    let mut at = path.start;
+    for m in &path.moves {
+        let below = at.z.min(m.to().z) < 0.0;
+        match *m {
+            Move::Line { to, .. } if below => {
+                let s = Segment::Line(crate::geom::Line::new(at.xy(), to.xy()));
+                assert!(
+                    !region.segment_nearer_than(&s, 3.0 - 1e-6, &tol),
+                    "line to {to:?}"
+                );
+            }
+            Move::Arc { center, sweep, .. } if below => {
+                let v = at.xy() - center;
+                for k in 0..=64 {
+                    let p = center
+                        + crate::geom::Vector::from_angle(v.angle() + sweep * k as f64 / 64.0) * v.length();
+                    assert!(
+                        region.distance(p) >= 3.0 - 1e-6 && region.contains(p),
+                        "arc at {p:?}"
+                    );
+                }
+            }
+            Move::Rapid { to } => assert!(at.z >= 0.0 && to.z >= 0.0, "rapid below the top"),
+            _ => {}
+        }
+        at = m.to();
+    }
+}
+
+/// Largest descent angle (radians) of any move that goes down below the stock top.
+fn steepest(path: &Toolpath) -> f64 {
+    let mut at = path.start;
+    let mut worst: f64 = 0.0;
+    for m in &path.moves {
+        let to = m.to();
+        if to.z < at.z && to.z < 0.0 && !matches!(m, Move::Rapid { .. }) {
+            let run = m.length(at).powi(2) - (at.z - to.z).powi(2);
+            let horizontal = run.max(0.0).sqrt();
+            // Above the floor of the previous pass the tool moves through air.
+            let dz = at.z.min(0.0) - to.z;
+            worst = worst.max(dz.atan2(horizontal));
+        }
+        at = to;
+    }
+    worst
+}
+
+#[test]
+fn one_branch_is_cut_without_retracting_between_loops() {
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 40.0, 30.0),
+        islands: vec![],
+    };
+    let (l, region) = linked(&pocket, 2.4, Entry::Helix);
+    assert!(l.warnings.is_empty());
+    // Only the final retract.
+    assert_eq!(l.toolpath.stats().retracts, 1);
+    assert_no_gouge(&l.toolpath, &region);
+    assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
+    // The helix is an arc descending at the pass start.
+    assert!(l
+        .toolpath
+        .moves
+        .iter()
+        .any(|m| matches!(m, Move::Arc { to, .. } if to.z < 0.0 && to.z > -2.0)));
+}
+
+#[test]
+fn branches_around_a_bar_island_are_entered_separately_and_never_crossed_at_depth() {
+    let bar = rect(10.0, 13.0, 50.0, 17.0).reversed();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 60.0, 30.0),
+        islands: vec![bar],
+    };
+    let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+    assert!(l.toolpath.stats().retracts >= 2);
+    assert_no_gouge(&l.toolpath, &region);
+}
+
+#[test]
+fn a_slot_too_narrow_for_a_helix_is_entered_by_a_ramp() {
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 40.0, 6.4),
+        islands: vec![],
+    };
+    let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    assert!(!l.toolpath.moves.iter().any(|m| matches!(m, Move::Arc { .. })));
+    assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
+    assert_no_gouge(&l.toolpath, &region);
+}
+
+#[test]
+fn a_pocket_barely_wider_than_the_tool_is_plunged_with_a_warning() {
+    let hole = Contour::new(vec![Segment::Arc(crate::geom::Arc::circle(
+        Point::new(0.0, 0.0),
+        3.05,
+    ))]);
+    let pocket = Pocket {
+        boundary: hole,
+        islands: vec![],
+    };
+    let (l, _) = linked(&pocket, 2.0, Entry::Helix);
+    assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
+    assert!(l.warnings[0].contains("plunging"));
+    let (l, _) = linked(&pocket, 2.0, Entry::Plunge);
+    assert!(l.warnings.is_empty());
+}
+
+/// Wall-following length of `path`'s feed moves at the final depth by the side the wall
+/// is on: (right, left).
+fn wall_sides(path: &Toolpath, pocket: &Pocket, z: f64) -> (f64, f64) {
+    let walls: Vec<Segment> = pocket.contours().flat_map(|c| c.segments.clone()).collect();
+    let (mut right, mut left) = (0.0, 0.0);
+    let mut at = path.start;
+    for m in &path.moves {
+        let to = m.to();
+        let footprint = match *m {
+            Move::Line { .. } => Some(Segment::Line(crate::geom::Line::new(at.xy(), to.xy()))),
+            Move::Arc { center, sweep, .. } => {
+                let v = at.xy() - center;
+                Some(Segment::Arc(crate::geom::Arc::new(
+                    center,
+                    v.length(),
+                    v.angle(),
+                    sweep,
+                )))
+            }
+            Move::Rapid { .. } => None,
+        };
+        if let Some(s) = footprint.filter(|_| at.z == z && to.z == z) {
+            for k in 0..100 {
+                let t = (k as f64 + 0.5) / 100.0;
+                let c = s.point_at(t);
+                let (d, w) = walls
+                    .iter()
+                    .map(|w| (point_distance(w, c), crate::geom::closest_point(w, c)))
+                    .fold((f64::INFINITY, c), |a, b| if b.0 < a.0 { b } else { a });
+                if (d - 3.0).abs() < 1e-3 {
+                    if s.tangent_at(t).cross(w - c) < 0.0 {
+                        right += s.length() / 100.0;
+                    } else {
+                        left += s.length() / 100.0;
+                    }
+                }
+            }
+        }
+        at = to;
+    }
+    (right, left)
+}
+
+#[test]
+fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 60.0, 40.0),
+        islands: vec![rect(20.0, 15.0, 35.0, 25.0).reversed()],
+    };
+    let tol = Tolerance::default();
+    let clear = ClearParams {
+        tool_radius: 3.0,
+        stepover: 2.4,
+        allowance: 0.0,
+    };
+    let plan = plan_pocket(&pocket, &clear, &tol).unwrap();
+    let region = Region::new(&pocket);
+    for (direction, wall_on_right) in [(Direction::Climb, true), (Direction::Conventional, false)] {
+        let p = LinkParams {
+            direction,
+            ..params(Entry::Helix)
+        };
+        let l = link(&[(&region, &plan)], &p, &tol);
+        let (right, left) = wall_sides(&l.toolpath, &pocket, -2.0);
+        // Both loops at the walls: 2 (54 + 34) round the wall; round the island its sides
+        // and a quarter circle of the tool's radius at each corner.
+        let expected = 2.0 * (54.0 + 34.0) + 2.0 * (15.0 + 10.0) + std::f64::consts::TAU * 3.0;
+        assert!((right + left - expected).abs() < 0.1, "{right} + {left}");
+        let (on, off) = if wall_on_right {
+            (right, left)
+        } else {
+            (left, right)
+        };
+        assert!(
+            off == 0.0,
+            "{direction:?}: {on} mm on the expected side, {off} on the other"
+        );
+    }
+}
