@@ -4,7 +4,7 @@ pub mod cases;
 
 use cases::{Case, Ring};
 use pocketeer::geom::{Arc, Contour, Line, Point, Segment};
-use pocketeer::import::Pocket;
+use pocketeer::geom::Pocket;
 
 /// A bulged polyline as exact lines and arcs.
 pub fn contour(ring: &Ring) -> Contour {

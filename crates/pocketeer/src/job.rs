@@ -2,8 +2,8 @@
 //! path.
 
 use crate::clear::{plan_region, ClearError, ClearParams, ClearPlan};
+use crate::geom::Pocket;
 use crate::geom::Tolerance;
-use crate::import::Pocket;
 use crate::link::{link, LinkParams, Linked};
 use crate::offset::Region;
 use thiserror::Error;

@@ -3,8 +3,8 @@
 
 mod common;
 
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
 use pocketeer::link::Entry;
 use pocketeer::post::{write_gcode, Dialect};
 use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};

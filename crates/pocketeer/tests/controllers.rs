@@ -8,8 +8,8 @@ mod common;
 
 use common::shapes::{circle_cw, rect, star};
 use pocketeer::clear::ClearParams;
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{Point, Tolerance};
-use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::post::{write_gcode, Coolant, Dialect, ProgramSettings, ProgramUnits};
 

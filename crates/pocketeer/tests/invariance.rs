@@ -10,8 +10,8 @@ mod common;
 use common::shapes::{circle_cw, mirror_segment, mirrored, polygon, rect, star};
 use pocketeer::clear::{plan_pocket, ClearParams};
 use pocketeer::export::dxf::{write_dxf, LayeredContour};
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Vector};
-use pocketeer::import::Pocket;
 use pocketeer::import::Units;
 use pocketeer::ImportOptions;
 

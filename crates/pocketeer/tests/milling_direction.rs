@@ -7,8 +7,8 @@ mod common;
 use common::replay;
 use common::shapes::{circle_cw, polygon, rect, star};
 use pocketeer::clear::ClearParams;
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{Contour, Segment, Tolerance};
-use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::post::{write_gcode, Dialect};
 

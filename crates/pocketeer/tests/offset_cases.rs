@@ -1,7 +1,7 @@
 //! Offsets of pockets with known answers, and the invariants every offset loop must keep.
 
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
 use pocketeer::offset::{offset_contour, offset_pocket};
 use std::f64::consts::{PI, TAU};
 

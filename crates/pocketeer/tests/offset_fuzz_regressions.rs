@@ -4,8 +4,8 @@
 //! They failed because a joining chord of the raw offset was judged valid with the offset
 //! arcs it was chained to; joins are now judged on their own.
 
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
 
 /// The bulged polygon of the fuzz input, in its own direction (edges under 1 µm dropped).
 fn polygon(vertices: &[(i16, i16, i8)]) -> Contour {

@@ -3,9 +3,9 @@
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{intersect, point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
 use pocketeer::import::simple::make_simple;
-use pocketeer::import::Pocket;
 use pocketeer::offset::offset_pocket;
 use proptest::prelude::*;
 use std::f64::consts::TAU;

@@ -3,8 +3,8 @@
 //! `UPDATE_GOLDEN=1 cargo test -p pocketeer --test post_golden` and review the diff.
 
 use pocketeer::clear::ClearParams;
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::post::{write_gcode, Coolant, Dialect, ProgramSettings, ProgramUnits};
 

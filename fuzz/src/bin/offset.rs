@@ -4,7 +4,7 @@
 
 use arbitrary::{Arbitrary, Unstructured};
 use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
-use pocketeer::import::Pocket;
+use pocketeer::geom::Pocket;
 
 #[derive(Arbitrary, Debug)]
 struct Input {

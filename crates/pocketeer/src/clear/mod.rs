@@ -13,8 +13,8 @@ mod levels;
 mod residue;
 mod tree;
 
+use crate::geom::Pocket;
 use crate::geom::{Aabb, Contour, Segment, Tolerance};
-use crate::import::Pocket;
 use crate::offset::Region;
 use thiserror::Error;
 
@@ -124,7 +124,7 @@ impl ClearPlan {
 /// ```
 /// use pocketeer::clear::{plan_pocket, ClearParams};
 /// use pocketeer::geom::{Contour, Point, Tolerance};
-/// use pocketeer::import::Pocket;
+/// use pocketeer::geom::Pocket;
 /// let p = Point::new;
 /// let square = Contour::polygon(&[p(0.0, 0.0), p(40.0, 0.0), p(40.0, 40.0), p(0.0, 40.0)]);
 /// let pocket = Pocket { boundary: square, islands: vec![] };

@@ -9,6 +9,7 @@ mod index;
 pub mod intersect;
 mod line;
 mod packed;
+mod pocket;
 mod point;
 mod segment;
 mod stitch;
@@ -22,6 +23,7 @@ pub use index::{for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentI
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
 pub use packed::{PackedTree, Search};
+pub use pocket::Pocket;
 pub use point::{Point, Vector};
 pub use segment::Segment;
 pub use stitch::{cluster_points, stitch, Piece};

@@ -14,7 +14,7 @@ pub mod units;
 
 pub use chain::{chain, ChainedContour, Chains, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
-pub use region::{find_pockets, Pocket, Regions};
+pub use region::{find_pockets, Regions};
 pub use units::Units;
 
 use crate::geom::{Aabb, Segment, Tolerance, DEFAULT_JOIN_TOLERANCE};

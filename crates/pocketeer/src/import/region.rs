@@ -12,8 +12,8 @@ use super::chain::ChainedContour;
 use super::error::{fmt_point, ImportError};
 use super::simple::make_simple;
 use crate::geom::{
-    cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Point, Segment,
-    Tolerance, WindingIndex,
+    cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
+    Segment, Tolerance, WindingIndex,
 };
 use crate::union_find::UnionFind;
 use std::cell::OnceCell;
@@ -40,27 +40,6 @@ impl<'a> Locator<'a> {
             Some(i) => i.winding(&c.segments, p) != 0,
             None => c.contains(p),
         }
-    }
-}
-
-/// A pocket: the area inside a counter-clockwise boundary and outside its clockwise islands.
-#[derive(Debug, Clone)]
-pub struct Pocket {
-    /// Outer boundary, counter-clockwise.
-    pub boundary: Contour,
-    /// Islands, clockwise.
-    pub islands: Vec<Contour>,
-}
-
-impl Pocket {
-    /// The boundary, then the islands.
-    pub fn contours(&self) -> impl Iterator<Item = &Contour> {
-        std::iter::once(&self.boundary).chain(&self.islands)
-    }
-
-    /// Area of material to remove: boundary area minus island areas.
-    pub fn area(&self) -> f64 {
-        self.boundary.signed_area() + self.islands.iter().map(Contour::signed_area).sum::<f64>()
     }
 }
 

@@ -1,8 +1,8 @@
 //! The linker's unit tests: gouge-free moves, entries, retracts and the milling side.
 use super::*;
 use crate::clear::{plan_pocket, ClearParams};
+use crate::geom::Pocket;
 use crate::geom::{point_distance, Contour};
-use crate::import::Pocket;
 use crate::toolpath::Move;
 
 fn params(entry: Entry) -> LinkParams {

@@ -26,8 +26,8 @@ mod split;
 
 pub(crate) use levels::offsets_until_empty;
 
+use crate::geom::Pocket;
 use crate::geom::{stitch_kept, Contour, Piece, PieceGraph, Point, Tolerance, WindingIndex};
-use crate::import::Pocket;
 use prune::{cancel_opposites, prune, remove_dangling, Profile};
 use split::{split, Nodes};
 use thiserror::Error;
@@ -94,7 +94,7 @@ pub enum OffsetError {
 ///
 /// ```
 /// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-/// use pocketeer::import::Pocket;
+/// use pocketeer::geom::Pocket;
 /// use pocketeer::offset::Region;
 /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
 /// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
@@ -188,7 +188,7 @@ impl Region {
     ///
     /// ```
     /// use pocketeer::geom::{Contour, Point, Tolerance};
-    /// use pocketeer::import::Pocket;
+    /// use pocketeer::geom::Pocket;
     /// use pocketeer::offset::Region;
     /// let p = Point::new;
     /// let l = Contour::polygon(&[p(0.0, 0.0), p(60.0, 0.0), p(60.0, 10.0), p(10.0, 10.0), p(10.0, 40.0), p(0.0, 40.0)]);
@@ -223,7 +223,7 @@ impl Region {
     ///
     /// ```
     /// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-    /// use pocketeer::import::Pocket;
+    /// use pocketeer::geom::Pocket;
     /// use pocketeer::offset::Region;
     /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
     /// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
@@ -275,7 +275,7 @@ impl Sources {
 ///
 /// ```
 /// use pocketeer::geom::{Arc, Contour, Line, Point, Segment, Tolerance};
-/// use pocketeer::import::Pocket;
+/// use pocketeer::geom::Pocket;
 /// use pocketeer::offset::offset_pocket;
 /// let p = Point::new;
 /// let c = [p(0.0, 0.0), p(100.0, 0.0), p(100.0, 60.0), p(0.0, 60.0)];
@@ -300,7 +300,7 @@ pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Result<Vec<Con
 ///
 /// ```
 /// use pocketeer::geom::{Contour, Point, Tolerance};
-/// use pocketeer::import::Pocket;
+/// use pocketeer::geom::Pocket;
 /// use pocketeer::offset::largest_inscribed_radius;
 /// let p = Point::new;
 /// let boundary = Contour::polygon(&[p(0.0, 0.0), p(100.0, 0.0), p(100.0, 30.0), p(0.0, 30.0)]);

@@ -3,8 +3,8 @@
 
 use super::gcode::{Motion, Program, ProgramMove};
 use super::polygon::{largest_inscribed_circle, ring, shape_area, Shape};
+use crate::geom::Pocket;
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance};
-use crate::import::Pocket;
 use crate::offset::{OffsetError, Region};
 use crate::toolpath::Point3;
 use i_overlay::core::fill_rule::FillRule;

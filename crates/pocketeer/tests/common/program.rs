@@ -1,8 +1,8 @@
 //! Our pocket job as program text, the way the end-to-end tests run it.
 
 use pocketeer::clear::ClearParams;
+use pocketeer::geom::Pocket;
 use pocketeer::geom::Tolerance;
-use pocketeer::import::Pocket;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
 

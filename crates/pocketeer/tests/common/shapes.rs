@@ -1,7 +1,7 @@
 //! Pockets for tests: rectangles, circles, stars, and random rectangles with round islands.
 
+use pocketeer::geom::Pocket;
 use pocketeer::geom::{Arc, Contour, Line, Point, Segment};
-use pocketeer::import::Pocket;
 use proptest::prelude::*;
 
 /// The polygon through `pts`.
