@@ -10,7 +10,6 @@ mod report;
 mod sanity;
 
 use clap::{Args, Parser, Subcommand};
-use pocketeer::import::error::fmt_point;
 use pocketeer::import::Units;
 use pocketeer::ImportOptions;
 use std::path::PathBuf;
@@ -133,7 +132,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
             .segments
             .first()
             .map_or(pocketeer::geom::Point::new(0.0, 0.0), |s| s.start());
-        let place = format!("pocket {} (outline through {})", k + 1, fmt_point(at));
+        let place = format!("pocket {} (outline through {})", k + 1, at);
         let offset = pocketeer::offset::offset_pocket(p, args.distance, tol)
             .map_err(|e| Failure(format!("{name}: {place}: {e}")))?;
         if offset.is_empty() {

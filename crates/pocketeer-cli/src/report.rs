@@ -2,7 +2,6 @@
 
 use crate::display::count;
 use pocketeer::geom::Point;
-use pocketeer::import::error::fmt_point;
 use pocketeer::Analysis;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -114,8 +113,8 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
             "open chain of {} on layer '{}' ignored: free ends at {} and {}{hint}",
             count(o.elements.len(), "element", "elements"),
             layer_name(o.layer),
-            fmt_point(o.start),
-            fmt_point(o.end)
+            o.start,
+            o.end
         ));
     }
     warnings.extend(a.regions.warnings.iter().cloned());
@@ -266,8 +265,8 @@ impl Report {
                 "       open    {}  layer {}  free ends {} and {}",
                 count(o.elements, "element", "elements"),
                 o.layer,
-                fmt_point(o.start),
-                fmt_point(o.end)
+                o.start,
+                o.end
             );
         }
         let _ = writeln!(s, "pockets   {}", self.pockets.len());

@@ -71,7 +71,7 @@ pub fn pocket_job(
                 "pocket {} (area {:.3} mm², near {}) is too narrow for the tool: not cut",
                 i + 1,
                 pockets[i].area(),
-                crate::import::error::fmt_point(pockets[i].boundary.segments[0].start())
+                pockets[i].boundary.segments[0].start()
             ));
         }
     }

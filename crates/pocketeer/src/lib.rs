@@ -47,13 +47,7 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
             .open
             .iter()
             .take(5)
-            .map(|o| {
-                format!(
-                    "{} to {}",
-                    import::error::fmt_point(o.start),
-                    import::error::fmt_point(o.end)
-                )
-            })
+            .map(|o| format!("{} to {}", o.start, o.end))
             .collect();
         let more = if chains.open.len() > 5 {
             format!(" and {} more", chains.open.len() - 5)

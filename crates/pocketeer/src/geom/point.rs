@@ -34,6 +34,26 @@ pub struct Vector {
     pub y: f64,
 }
 
+/// `(x, y)` with four decimals, as messages name places (exponent form when huge).
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// assert_eq!(Point::new(1.5, -2.0).to_string(), "(1.5000, -2.0000)");
+/// assert_eq!(Point::new(3e12, 0.0).to_string(), "(3e12, 0.0000)");
+/// ```
+impl std::fmt::Display for Point {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let part = |x: f64| {
+            if x.is_finite() && x.abs() < 1e9 {
+                format!("{x:.4}")
+            } else {
+                format!("{x:e}")
+            }
+        };
+        write!(f, "({}, {})", part(self.x), part(self.y))
+    }
+}
+
 impl Point {
     /// The point (x, y).
     pub const fn new(x: f64, y: f64) -> Self {

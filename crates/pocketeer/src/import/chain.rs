@@ -5,7 +5,6 @@
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
-use super::error::fmt_point;
 use super::Element;
 use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
 use crate::union_find::UnionFind;
@@ -87,7 +86,7 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
             out.warnings.push(format!(
                 "a closed polyline of {} at {} encloses no area; ignored",
                 crate::import::error::fmt_count(members.len(), "element", "elements"),
-                fmt_point(contour.segments[0].start())
+                contour.segments[0].start()
             ));
             continue;
         }
@@ -126,7 +125,7 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
             "{} between end points closed, the largest {:.6} mm at {}",
             crate::import::error::fmt_count(nodes.gaps_closed, "gap", "gaps"),
             nodes.largest_gap,
-            fmt_point(nodes.largest_gap_at)
+            nodes.largest_gap_at
         ));
     }
     // An element whose ends fall into one node has no length worth keeping, unless it is long
@@ -479,7 +478,7 @@ fn pair_ends(
             warnings.push(format!(
                 "{} elements end at {}: one of them is left open",
                 ends.len(),
-                fmt_point(nodes.pos[id])
+                nodes.pos[id]
             ));
         }
         // Direction leaving the node along each element.

@@ -65,18 +65,6 @@ pub fn fmt_count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Formats a point as `(x, y)` with four decimals.
-pub fn fmt_point(p: Point) -> String {
-    let f = |x: f64| {
-        if x.is_finite() && x.abs() < 1e9 {
-            format!("{x:.4}")
-        } else {
-            format!("{x:e}")
-        }
-    };
-    format!("({}, {})", f(p.x), f(p.y))
-}
-
 /// Why a drawing could not be imported.
 #[derive(Debug, Error)]
 pub enum ImportError {
@@ -134,7 +122,7 @@ pub enum ImportError {
     /// An open chain surrounds closed contours: most likely a pocket outline that does not close.
     #[error(
         "the open chain of {} on layer '{layer}' (free ends at {} and {}) surrounds {}: it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
-        fmt_count(*.elements, "element", "elements"), fmt_point(*.start), fmt_point(*.end),
+        fmt_count(*.elements, "element", "elements"), .start, .end,
         fmt_count(*.surrounded, "closed contour", "closed contours"),
         .gap.filter(|g| *g <= 1.0).map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
     )]
@@ -153,7 +141,7 @@ pub enum ImportError {
         gap: Option<f64>,
     },
     /// A contour crosses or touches itself.
-    #[error("the contour on layer '{layer}' crosses or touches itself at {}", fmt_point(*.point))]
+    #[error("the contour on layer '{layer}' crosses or touches itself at {}", .point)]
     SelfCrossing {
         /// Layer of the contour.
         layer: String,

@@ -9,7 +9,7 @@
 //! the wall cuts the wall back. A contour that crosses itself is refused.
 
 use super::chain::ChainedContour;
-use super::error::{fmt_point, ImportError};
+use super::error::ImportError;
 use super::simple::make_simple;
 use crate::geom::{
     cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
@@ -79,7 +79,7 @@ pub fn find_pockets(
             warnings.push(format!(
                 "a sliver loop where the contour on layer '{}' crosses itself at {} removed",
                 layer_name(c),
-                fmt_point(p)
+                p
             ));
         }
         simple.push(ChainedContour { contour, ..c.clone() });
@@ -149,7 +149,7 @@ pub fn find_pockets(
                 "contours on layers '{}' and '{}' meet at {}; they {what}",
                 layer_names.get(contours[a].layer).map_or("?", |s| s.as_str()),
                 layer_names.get(contours[b].layer).map_or("?", |s| s.as_str()),
-                fmt_point(p)
+                p
             ));
         }
     }
@@ -424,10 +424,7 @@ fn assemble(loops: Vec<Contour>, warnings: &mut Vec<String>) -> Vec<Pocket> {
             Some(k) => pockets[k].islands.push(hole),
             None => {
                 let at = hole.segments.first().map(|s| s.start()).unwrap_or_default();
-                warnings.push(format!(
-                    "an island at {} lies in no pocket; ignored",
-                    fmt_point(at)
-                ));
+                warnings.push(format!("an island at {} lies in no pocket; ignored", at));
             }
         }
     }
