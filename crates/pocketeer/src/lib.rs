@@ -1,8 +1,61 @@
 //! pocketeer: contour-parallel pocket milling from DXF drawings.
 //!
-//! The library follows the data flow of the design: [`import`] reads a drawing into segments,
-//! chains them into closed contours and nests those into pockets with islands; the geometry
-//! kernel in [`geom`] holds the exact lines and arcs every stage works on.
+//! Each stage is a plain function from one value to the next; none reaches back into an
+//! earlier one, and only [`import`] (bytes in) and [`post`]/[`export`] (text out) touch the
+//! world outside:
+//!
+//! ```text
+//! DXF bytes
+//!   └─ import::analyze       read, join end points, nest      → Analysis { regions.pockets: Vec<geom::Pocket> }
+//!      └─ clear::plan_region  levels r + allowance + k·stepover → ClearPlan (a tree of loops, clean-up paths)
+//!         │   (offset: the paper's raw offset → split → prune → stitch, exact lines and arcs)
+//!         └─ link::link        order, entries, links, passes    → Linked { toolpath: Toolpath }
+//!            ├─ post::write_gcode    GRBL, LinuxCNC, Mach3      → G-code text
+//!            ├─ export               DXF of loops, SVG previews → text
+//!            └─ simulate::check_program  gouge, leftover, side   → CheckReport
+//! ```
+//!
+//! [`job::pocket_job`] runs the middle two for every pocket of a drawing. The kernel in
+//! [`geom`] holds what every stage works on: points, lines, arcs, contours, pockets, their
+//! intersections and distances, spatial indexes, and the [`geom::Tolerance`]s.
+//!
+//! The whole way, from the bytes of a drawing to the text of a program:
+//!
+//! ```
+//! use pocketeer::clear::ClearParams;
+//! use pocketeer::link::{Direction, Entry, LinkParams};
+//! use pocketeer::post::{write_gcode, Dialect, ProgramSettings};
+//!
+//! // A 60 x 40 mm pocket round a round island of radius 8, drawn in millimetres.
+//! let dxf = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n\
+//!            0\nSECTION\n2\nENTITIES\n\
+//!            0\nLWPOLYLINE\n8\nplate\n90\n4\n70\n1\n\
+//!            10\n0\n20\n0\n10\n60\n20\n0\n10\n60\n20\n40\n10\n0\n20\n40\n\
+//!            0\nCIRCLE\n8\nplate\n10\n30\n20\n20\n40\n8\n\
+//!            0\nENDSEC\n0\nEOF\n";
+//! let analysis = pocketeer::analyze(dxf.as_bytes(), &pocketeer::ImportOptions::default()).unwrap();
+//! let pockets = &analysis.regions.pockets;
+//! assert_eq!((pockets.len(), pockets[0].islands.len()), (1, 1));
+//!
+//! // A 6 mm tool, 40 % stepover, 3 mm deep in two passes, climb milling.
+//! let clear = ClearParams { tool_radius: 3.0, stepover: 2.4, allowance: 0.0 };
+//! let link = LinkParams {
+//!     tool_radius: 3.0,
+//!     depth: 3.0,
+//!     step_down: 1.5,
+//!     safe_z: 5.0,
+//!     feed_height: 1.0,
+//!     direction: Direction::Climb,
+//!     entry: Entry::Helix,
+//!     ramp_angle: 3f64.to_radians(),
+//! };
+//! let job = pocketeer::job::pocket_job(pockets, &clear, &link, &analysis.tolerance).unwrap();
+//! let gcode = write_gcode(&job.linked.toolpath, &ProgramSettings::default(), Dialect::Grbl);
+//! assert!(gcode.starts_with("G21\n"));
+//! assert!(gcode.contains("\nM3 S12000\nG4 P2\n"));
+//! assert!(gcode.contains("Z-3.0000"));
+//! assert!(gcode.ends_with("M5\nM2\n"));
+//! ```
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -19,82 +72,4 @@ pub mod simulate;
 pub mod toolpath;
 mod union_find;
 
-pub use import::{read_drawing, Drawing, ImportError, ImportOptions};
-
-/// A drawing read, chained and nested: everything `inspect` reports and pocketing starts from.
-#[derive(Debug, Clone)]
-pub struct Analysis {
-    /// The drawing as read.
-    pub drawing: Drawing,
-    /// Its elements joined into contours.
-    pub chains: import::Chains,
-    /// The contours nested into pockets.
-    pub regions: import::Regions,
-    /// The tolerances used.
-    pub tolerance: geom::Tolerance,
-}
-
-/// Reads DXF bytes and finds the pockets in them.
-///
-/// Fails when the file cannot be read, when no closed contour exists, or when a contour
-/// crosses itself.
-pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, ImportError> {
-    let drawing = read_drawing(bytes, options)?;
-    let tolerance = drawing.tolerance(options.join_tolerance);
-    let chains = import::chain(&drawing.elements, &tolerance);
-    if chains.contours.is_empty() {
-        let ends: Vec<String> = chains
-            .open
-            .iter()
-            .take(5)
-            .map(|o| format!("{} to {}", o.start, o.end))
-            .collect();
-        let more = if chains.open.len() > 5 {
-            format!(" and {} more", chains.open.len() - 5)
-        } else {
-            String::new()
-        };
-        return Err(ImportError::NoClosedContour(format!(
-            "{}, free ends {}{more}; close the outline or raise --join-tolerance",
-            import::error::fmt_count(chains.open.len(), "open chain", "open chains"),
-            ends.join(", ")
-        )));
-    }
-    if !options.ignore_open {
-        refuse_open_outlines(&drawing, &chains)?;
-    }
-    let regions = import::find_pockets(&chains.contours, &drawing.layers, &tolerance)?;
-    Ok(Analysis {
-        drawing,
-        chains,
-        regions,
-        tolerance,
-    })
-}
-
-/// Refuses a drawing where an open chain surrounds closed contours: pocketing the contours
-/// inside a broken outline would cut its islands as if they were pockets.
-fn refuse_open_outlines(drawing: &Drawing, chains: &import::Chains) -> Result<(), ImportError> {
-    let boxes: Vec<geom::Aabb> = chains.contours.iter().map(|c| c.contour.bbox()).collect();
-    let index = geom::BoxIndex::new(&boxes);
-    for o in &chains.open {
-        let extent = o.elements.iter().fold(geom::Aabb::EMPTY, |b, &e| {
-            b.union(&drawing.elements[e].segment.bbox())
-        });
-        let surrounded = index
-            .intersecting(&extent)
-            .filter(|&k| extent.contains_box(&boxes[k]) && boxes[k] != extent)
-            .count();
-        if surrounded > 0 {
-            return Err(ImportError::OpenOutline {
-                layer: drawing.layers.get(o.layer).cloned().unwrap_or_default(),
-                elements: o.elements.len(),
-                start: o.start,
-                end: o.end,
-                surrounded,
-                gap: o.nearest_gap,
-            });
-        }
-    }
-    Ok(())
-}
+pub use import::{analyze, read_drawing, Analysis, Drawing, ImportError, ImportOptions};

@@ -1,6 +1,8 @@
 //! From DXF bytes to pockets: reading ([`dxf`]), block expansion, curves to exact lines and arcs,
-//! chaining into closed contours ([`mod@chain`]), and nesting into pockets with islands ([`region`]).
+//! chaining into closed contours ([`mod@chain`]), and nesting into pockets with islands ([`region`]);
+//! [`analyze`] does it all.
 
+mod analysis;
 pub mod biarc;
 pub mod chain;
 pub mod curve;
@@ -12,6 +14,7 @@ pub mod region;
 pub mod simple;
 pub mod units;
 
+pub use analysis::{analyze, Analysis};
 pub use chain::{chain, ChainedContour, Chains, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
 pub use region::{find_pockets, Regions};
