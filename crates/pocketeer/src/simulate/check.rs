@@ -122,101 +122,30 @@ pub fn check_program(
     let moves = &program.moves;
     let deepest = moves.iter().map(|m| m.to.z.min(m.from.z)).fold(0.0, f64::min);
     let final_depth = params.depth.map_or(deepest, |d| -d);
-    let regions: Vec<Region> = pockets.iter().map(Region::new).collect();
-    let walls: Vec<SegmentIndex> = pockets
-        .iter()
-        .map(|p| {
-            let segs: Vec<Segment> = p.contours().flat_map(|c| c.segments.iter().copied()).collect();
-            SegmentIndex::new(&segs)
-        })
-        .collect();
-    let mut report = CheckReport {
-        pockets: Vec::new(),
-        final_depth,
-        deepest,
-        rapids_into_stock: Vec::new(),
-        plunges: Vec::new(),
-        feedless: Vec::new(),
-        cut_length: 0.0,
-        rapid_length: 0.0,
-        retracts: 0,
-        dwell: program.dwell,
-        seconds: program.dwell,
-        wall_sides: super::side::Sides::default(),
-        gouge: 0.0,
-        thickest: 0.0,
-        passed: true,
-        swept: Vec::new(),
-    };
+    let walls = Walls::new(pockets);
+    let mut report = CheckReport::empty(final_depth, deepest, program.dwell);
     let mut gouges: Vec<(f64, Option<Place>)> = vec![(0.0, None); pockets.len()];
     let history = super::history::CutHistory::new(moves, r);
     for (k, m) in moves.iter().enumerate() {
-        let len = m.length();
         let place = |p: Point| Place {
             x: p.x,
             y: p.y,
             line: m.line,
         };
         if m.motion == Motion::Rapid {
-            report.rapid_length += len;
-            report.seconds += 60.0 * len / params.rapid_rate;
-            if m.to.z > m.from.z {
-                report.retracts += 1;
-            }
-            // A rapid straight up out of a cut is a retract through air, and one straight down
-            // onto stock cut deeper than where it stops moves through air too; any other rapid
-            // that is below Z=0 at either end moves through, or down into, the stock.
-            let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6;
-            let through_air = vertical && (m.to.z >= m.from.z || history.cleared(k, m.to.xy(), m.to.z, r));
-            if m.from.z.min(m.to.z) < -1e-9 && !through_air {
+            report.tally_rapid(m, params.rapid_rate);
+            if !rapid_through_air(m, k, &history, r) {
                 report.rapids_into_stock.push(place(m.to.xy()));
             }
             continue;
         }
-        report.cut_length += len;
-        match m.feed {
-            Some(f) if f > 0.0 => report.seconds += 60.0 * len / f,
-            _ => report.feedless.push(place(m.to.xy())),
-        }
+        report.tally_feed(m);
         if m.from.z.min(m.to.z) >= 0.0 {
             continue;
         }
-        let seg = m.footprint();
-        // The pocket the move is in (by its middle), or the nearest when it is in none.
-        let mid = seg.point_at(0.5);
-        let owner = (0..pockets.len())
-            .find(|&i| regions[i].contains(mid))
-            .or_else(|| {
-                (0..pockets.len()).min_by(|&a, &b| walls[a].distance(mid).total_cmp(&walls[b].distance(mid)))
-            });
-        if let Some(i) = owner {
-            let inside = regions[i].contains(mid);
-            let g = if inside {
-                walls[i]
-                    .nearest_to_segment(&seg, r + params.gouge_tolerance.max(0.0) + 1.0, tol.eps)
-                    .map(|(d, at)| (r - d, at))
-            } else {
-                let d = walls[i].distance(mid);
-                Some((r + d, mid))
-            };
-            // A move that touches a wall may leave the pocket: then the deepest point outside
-            // decides, found along the move (every 5 µm).
-            let g = match g {
-                Some(found) if found.0 >= r - 1e-9 => {
-                    let n = ((seg.length() / 0.005).ceil() as usize).clamp(1, 100_000);
-                    (0..=n)
-                        .map(|k| seg.point_at(k as f64 / n as f64))
-                        .filter(|&q| !regions[i].contains(q))
-                        .map(|q| (r + walls[i].distance(q), q))
-                        .max_by(|a, b| a.0.total_cmp(&b.0))
-                        .or(Some(found))
-                }
-                other => other,
-            };
-            if let Some((g, at)) = g {
-                if g > gouges[i].0 {
-                    gouges[i] = (g, Some(place(at)));
-                }
+        if let Some((i, g, at)) = walls.gouge(&m.footprint(), r, params.gouge_tolerance, tol) {
+            if g > gouges[i].0 {
+                gouges[i] = (g, Some(place(at)));
             }
         }
         // A feed move straight down below Z=0 must land where the tool has cut that deep.
@@ -226,13 +155,9 @@ pub fn check_program(
         }
     }
     report.swept = swept(moves, final_depth, r);
-    let all_walls: Vec<Segment> = pockets
-        .iter()
-        .flat_map(|p| p.contours().flat_map(|c| c.segments.iter().copied()))
-        .collect();
-    report.wall_sides = super::side::material_sides(moves, &SegmentIndex::new(&all_walls), final_depth, r);
+    report.wall_sides = super::side::material_sides(moves, &walls.all, final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
-        let pc = pocket_check(p, &regions[i], &report.swept, gouges[i], r, tol)?;
+        let pc = pocket_check(p, &walls.regions[i], &report.swept, gouges[i], r, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
         report.thickest = report.thickest.max(pc.thickest);
         report.pockets.push(pc);
@@ -241,6 +166,125 @@ pub fn check_program(
         && report.thickest <= params.leftover_tolerance
         && report.rapids_into_stock.is_empty();
     Ok(report)
+}
+
+impl CheckReport {
+    /// A report with nothing counted yet.
+    fn empty(final_depth: f64, deepest: f64, dwell: f64) -> CheckReport {
+        CheckReport {
+            pockets: Vec::new(),
+            final_depth,
+            deepest,
+            rapids_into_stock: Vec::new(),
+            plunges: Vec::new(),
+            feedless: Vec::new(),
+            cut_length: 0.0,
+            rapid_length: 0.0,
+            retracts: 0,
+            dwell,
+            seconds: dwell,
+            wall_sides: super::side::Sides::default(),
+            gouge: 0.0,
+            thickest: 0.0,
+            passed: true,
+            swept: Vec::new(),
+        }
+    }
+
+    /// Counts a rapid's length, time and whether it retracts.
+    fn tally_rapid(&mut self, m: &ProgramMove, rapid_rate: f64) {
+        let len = m.length();
+        self.rapid_length += len;
+        self.seconds += 60.0 * len / rapid_rate;
+        if m.to.z > m.from.z {
+            self.retracts += 1;
+        }
+    }
+
+    /// Counts a feed move's length and time, or notes that it has no feed rate.
+    fn tally_feed(&mut self, m: &ProgramMove) {
+        let len = m.length();
+        self.cut_length += len;
+        match m.feed {
+            Some(f) if f > 0.0 => self.seconds += 60.0 * len / f,
+            _ => self.feedless.push(Place {
+                x: m.to.x,
+                y: m.to.y,
+                line: m.line,
+            }),
+        }
+    }
+}
+
+/// True when the rapid `m` (move `k`) moves through air: above the stock, straight up out of
+/// a cut, or straight down onto stock cut deeper than where it stops. Any other rapid that is
+/// below Z=0 at either end moves through, or down into, the stock.
+fn rapid_through_air(m: &ProgramMove, k: usize, history: &super::history::CutHistory, r: f64) -> bool {
+    let vertical = m.from.xy().distance(m.to.xy()) <= 1e-6;
+    m.from.z.min(m.to.z) >= -1e-9
+        || vertical && (m.to.z >= m.from.z || history.cleared(k, m.to.xy(), m.to.z, r))
+}
+
+/// The pockets' regions and walls, indexed for the gouge measure.
+struct Walls {
+    regions: Vec<Region>,
+    /// The walls and islands of each pocket.
+    each: Vec<SegmentIndex>,
+    /// Every pocket's walls and islands together.
+    all: SegmentIndex,
+}
+
+impl Walls {
+    fn new(pockets: &[Pocket]) -> Walls {
+        let segments =
+            |p: &Pocket| -> Vec<Segment> { p.contours().flat_map(|c| c.segments.iter().copied()).collect() };
+        let all: Vec<Segment> = pockets.iter().flat_map(segments).collect();
+        Walls {
+            regions: pockets.iter().map(Region::new).collect(),
+            each: pockets.iter().map(|p| SegmentIndex::new(&segments(p))).collect(),
+            all: SegmentIndex::new(&all),
+        }
+    }
+
+    /// How far the disc of radius `r` moving along `seg` reaches beyond the walls of the pocket
+    /// it is in (by its middle; the nearest pocket when it is in none), where, and which
+    /// pocket: `None` when no wall comes within reach.
+    fn gouge(
+        &self,
+        seg: &Segment,
+        r: f64,
+        gouge_tolerance: f64,
+        tol: &Tolerance,
+    ) -> Option<(usize, f64, Point)> {
+        let mid = seg.point_at(0.5);
+        let n = self.regions.len();
+        let i = (0..n).find(|&i| self.regions[i].contains(mid)).or_else(|| {
+            (0..n).min_by(|&a, &b| self.each[a].distance(mid).total_cmp(&self.each[b].distance(mid)))
+        })?;
+        let (region, walls) = (&self.regions[i], &self.each[i]);
+        let g = if region.contains(mid) {
+            walls
+                .nearest_to_segment(seg, r + gouge_tolerance.max(0.0) + 1.0, tol.eps)
+                .map(|(d, at)| (r - d, at))
+        } else {
+            Some((r + walls.distance(mid), mid))
+        };
+        // A move that touches a wall may leave the pocket: then the deepest point outside
+        // decides, found along the move (every 5 µm).
+        let g = match g {
+            Some(found) if found.0 >= r - 1e-9 => {
+                let n = ((seg.length() / 0.005).ceil() as usize).clamp(1, 100_000);
+                (0..=n)
+                    .map(|k| seg.point_at(k as f64 / n as f64))
+                    .filter(|&q| !region.contains(q))
+                    .map(|q| (r + walls.distance(q), q))
+                    .max_by(|a, b| a.0.total_cmp(&b.0))
+                    .or(Some(found))
+            }
+            other => other,
+        };
+        g.map(|(g, at)| (i, g, at))
+    }
 }
 
 /// The area swept by the tool at `depth` or deeper (a program may cut below the depth asked
