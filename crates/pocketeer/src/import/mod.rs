@@ -106,21 +106,7 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
     let binary = groups.binary;
     let mut doc = dxf::parse_document(groups)?;
     let mut warnings = std::mem::take(&mut doc.warnings);
-
-    let declared_units = doc
-        .header_value("$INSUNITS")
-        .and_then(|g| g.int())
-        .and_then(Units::from_insunits);
-    let units = options.units.or(declared_units).unwrap_or(Units::Millimeters);
-    if let (Some(d), Some(o)) = (declared_units, options.units) {
-        if d != o {
-            warnings.push(format!(
-                "the drawing declares {}; read in {} as asked",
-                d.name(),
-                o.name()
-            ));
-        }
-    }
+    let (declared_units, units) = drawing_units(&doc, options, &mut warnings);
 
     let mut model = std::mem::take(&mut doc.entities);
     model.retain(|e| !e.in_paper_space());
@@ -137,9 +123,58 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
     let mut expander = expand::Expander::new(&doc);
     expander.walk(&model, &Affine::scale(units.mm()), None)?;
     warnings.append(&mut expander.warnings);
+    let layers = layer_names(&doc, &expander.placed, options, &mut warnings);
+    let (elements, sources, extent) = elements_of(expander.placed, &layers, options);
+    if elements.is_empty() {
+        return Err(nothing_to_pocket(options, &layers, &entity_counts));
+    }
+    Ok(Drawing {
+        declared_units,
+        units,
+        layers,
+        entity_counts,
+        elements,
+        sources,
+        extent,
+        warnings,
+        binary,
+    })
+}
 
+/// The unit `$INSUNITS` declares, if any, and the one the drawing is read in (the options',
+/// else the declared one, else millimetres); a warning when the options override the drawing.
+fn drawing_units(
+    doc: &dxf::Document,
+    options: &ImportOptions,
+    warnings: &mut Vec<String>,
+) -> (Option<Units>, Units) {
+    let declared_units = doc
+        .header_value("$INSUNITS")
+        .and_then(|g| g.int())
+        .and_then(Units::from_insunits);
+    let units = options.units.or(declared_units).unwrap_or(Units::Millimeters);
+    if let (Some(d), Some(o)) = (declared_units, options.units) {
+        if d != o {
+            warnings.push(format!(
+                "the drawing declares {}; read in {} as asked",
+                d.name(),
+                o.name()
+            ));
+        }
+    }
+    (declared_units, units)
+}
+
+/// Every layer name: the LAYER table, then layers used but not declared; a warning for each
+/// layer asked for that the drawing does not have.
+fn layer_names(
+    doc: &dxf::Document,
+    placed: &[expand::Placed],
+    options: &ImportOptions,
+    warnings: &mut Vec<String>,
+) -> Vec<String> {
     let mut layers = doc.layers.clone();
-    for p in &expander.placed {
+    for p in placed {
         if !layers.iter().any(|l| l.eq_ignore_ascii_case(&p.layer)) {
             layers.push(p.layer.clone());
         }
@@ -154,18 +189,27 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
             }
         }
     }
+    layers
+}
+
+/// The elements of the curves placed on the layers the options keep, the entities they come
+/// from, and their extent.
+fn elements_of(
+    placed: Vec<expand::Placed>,
+    layers: &[String],
+    options: &ImportOptions,
+) -> (Vec<Element>, Vec<EntityRef>, Aabb) {
     let keep = |layer: &str| {
         options
             .layers
             .as_ref()
             .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(layer)))
     };
-
     let mut elements = Vec::new();
     let mut sources = Vec::new();
     let mut extent = Aabb::EMPTY;
     let mut segs = Vec::new();
-    for p in expander.placed {
+    for p in placed {
         if !keep(&p.layer) {
             continue;
         }
@@ -187,30 +231,26 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
             });
         }
     }
-    if elements.is_empty() {
-        let what = if options.layers.is_some() {
-            format!(
-                "no lines, arcs, circles, polylines, splines or ellipses on the selected layers (layers: {})",
-                layers.join(", ")
-            )
-        } else {
-            let kinds: Vec<String> = entity_counts.iter().map(|(k, n)| format!("{n} {k}")).collect();
-            format!(
-                "model space holds {} but no lines, arcs, circles, polylines, splines or ellipses",
-                kinds.join(", ")
-            )
-        };
-        return Err(ImportError::Empty(what));
-    }
-    Ok(Drawing {
-        declared_units,
-        units,
-        layers,
-        entity_counts,
-        elements,
-        sources,
-        extent,
-        warnings,
-        binary,
-    })
+    (elements, sources, extent)
+}
+
+/// Why a drawing whose model space has entities gives no element to pocket.
+fn nothing_to_pocket(
+    options: &ImportOptions,
+    layers: &[String],
+    entity_counts: &BTreeMap<String, usize>,
+) -> ImportError {
+    let what = if options.layers.is_some() {
+        format!(
+            "no lines, arcs, circles, polylines, splines or ellipses on the selected layers (layers: {})",
+            layers.join(", ")
+        )
+    } else {
+        let kinds: Vec<String> = entity_counts.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        format!(
+            "model space holds {} but no lines, arcs, circles, polylines, splines or ellipses",
+            kinds.join(", ")
+        )
+    };
+    ImportError::Empty(what)
 }
