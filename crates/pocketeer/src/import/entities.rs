@@ -59,124 +59,143 @@ impl Fields<'_> {
 /// The curves of a drawing entity. Errors are messages about this entity.
 pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
     let f = Fields(e);
-    let mut closed = false;
-    let curves = match e.kind.as_str() {
-        "LINE" => {
-            let a = f.point(10).ok_or("LINE without a start point")?;
-            let b = f.point(11).ok_or("LINE without an end point")?;
-            vec![Curve::Line(a, b)]
-        }
-        "CIRCLE" | "ARC" => {
-            let c = f.point(10).ok_or("no centre")?;
-            let r = f.real(40).ok_or("no radius")?;
-            if r.is_nan() || r <= 0.0 {
-                return Err(format!("radius {r} is not positive"));
-            }
-            let (t0, sweep) = if e.kind == "CIRCLE" {
-                (0.0, TAU)
-            } else {
-                let a0 = f.real_or(50, 0.0).to_radians();
-                let a1 = f.real_or(51, 360.0).to_radians();
-                let mut sweep = (a1 - a0).rem_euclid(TAU);
-                if sweep == 0.0 && a1 != a0 {
-                    sweep = TAU; // 0° to 360°: a whole circle written as an arc
-                }
-                (a0, sweep)
-            };
-            let arc = EllipseArc {
-                center: c,
-                u: Vector::new(r, 0.0),
-                v: Vector::new(0.0, r),
-                t0,
-                sweep,
-            };
-            let ocs = f.ocs(f.real_or(30, 0.0));
-            if sweep == 0.0 {
-                vec![]
-            } else {
-                vec![Curve::Ellipse(arc.transformed(&ocs))]
-            }
-        }
-        "ELLIPSE" => {
-            let c = f.point(10).ok_or("no centre")?;
-            let major = Vector::new(f.real_or(11, 0.0), f.real_or(21, 0.0));
-            let major_z = f.real_or(31, 0.0);
-            let ratio = f.real_or(40, 1.0);
-            if major.length() == 0.0 || ratio.is_nan() || ratio <= 0.0 {
-                return Err("degenerate ellipse (zero axis)".into());
-            }
-            let n = f.extrusion();
-            // Minor axis = normal × major, scaled by the ratio; projected on XY.
-            let minor = Vector::new(n[1] * major_z - n[2] * major.y, n[2] * major.x - n[0] * major_z) * ratio;
-            let t0 = f.real_or(41, 0.0);
-            let t1 = f.real_or(42, TAU);
-            let mut sweep = (t1 - t0).rem_euclid(TAU);
-            if sweep == 0.0 {
-                sweep = TAU;
-            }
-            vec![Curve::Ellipse(EllipseArc {
-                center: c,
-                u: major,
-                v: minor,
-                t0,
-                sweep,
-            })]
-        }
-        "LWPOLYLINE" => {
-            let mut verts: Vec<(Point, f64)> = Vec::new();
-            for g in &e.groups {
-                match g.code {
-                    10 => verts.push((Point::new(g.real().unwrap_or(f64::NAN), 0.0), 0.0)),
-                    20 => {
-                        if let Some(v) = verts.last_mut() {
-                            v.0.y = g.real().unwrap_or(f64::NAN);
-                        }
-                    }
-                    42 => {
-                        if let Some(v) = verts.last_mut() {
-                            v.1 = g.real().unwrap_or(0.0);
-                        }
-                    }
-                    _ => {}
-                }
-            }
-            closed = f.int_or(70, 0) & 1 == 1;
-            polyline(&verts, closed, &f.ocs(f.real_or(38, 0.0)))
-        }
-        "POLYLINE" => {
-            let flags = f.int_or(70, 0);
-            if flags & (16 | 64) != 0 {
-                return Ok(Drawn::Ignored); // polygon and polyface meshes are surfaces, not outlines
-            }
-            let is_3d = flags & 8 != 0;
-            let spline_fit = flags & 4 != 0;
-            let mut verts = Vec::new();
-            for v in &e.vertices {
-                let vf = Fields(v);
-                let vflags = vf.int_or(70, 0);
-                // A spline-fit polyline lists its frame (control) vertices too: draw the fitted ones.
-                if spline_fit && vflags & 16 != 0 {
-                    continue;
-                }
-                let p = vf.point(10).ok_or("VERTEX without coordinates")?;
-                verts.push((p, if is_3d { 0.0 } else { vf.real_or(42, 0.0) }));
-            }
-            let m = if is_3d {
-                Affine::IDENTITY
-            } else {
-                f.ocs(f.real_or(30, 0.0))
-            };
-            closed = flags & 1 == 1;
-            polyline(&verts, closed, &m)
-        }
-        "SPLINE" => spline(&f)?,
-        "TEXT" | "MTEXT" | "DIMENSION" | "HATCH" | "POINT" | "SOLID" | "3DFACE" | "ATTDEF" | "ATTRIB"
-        | "LEADER" | "MLEADER" | "MULTILEADER" | "VIEWPORT" | "IMAGE" | "WIPEOUT" | "TRACE" | "3DSOLID"
-        | "REGION" | "BODY" | "TOLERANCE" | "RAY" | "XLINE" | "OLE2FRAME" | "MESH" | "SURFACE" | "HELIX"
-        | "ACAD_TABLE" | "MLINE" => return Ok(Drawn::Ignored),
-        _ => return Ok(Drawn::Ignored),
+    let open = |curves| {
+        Ok(Drawn::Curves {
+            curves,
+            closed: false,
+        })
     };
-    Ok(Drawn::Curves { curves, closed })
+    match e.kind.as_str() {
+        "LINE" => open(line(&f)?),
+        "CIRCLE" | "ARC" => open(circle_or_arc(e, &f)?),
+        "ELLIPSE" => open(ellipse(&f)?),
+        "LWPOLYLINE" => Ok(lwpolyline(e, &f)),
+        "POLYLINE" => old_polyline(e, &f),
+        "SPLINE" => open(spline(&f)?),
+        // Text, dimensions, hatches, meshes, solids, images, ...: no outline.
+        _ => Ok(Drawn::Ignored),
+    }
+}
+
+fn line(f: &Fields) -> Result<Vec<Curve>, String> {
+    let a = f.point(10).ok_or("LINE without a start point")?;
+    let b = f.point(11).ok_or("LINE without an end point")?;
+    Ok(vec![Curve::Line(a, b)])
+}
+
+fn circle_or_arc(e: &RawEntity, f: &Fields) -> Result<Vec<Curve>, String> {
+    let c = f.point(10).ok_or("no centre")?;
+    let r = f.real(40).ok_or("no radius")?;
+    if r.is_nan() || r <= 0.0 {
+        return Err(format!("radius {r} is not positive"));
+    }
+    let (t0, sweep) = if e.kind == "CIRCLE" {
+        (0.0, TAU)
+    } else {
+        let a0 = f.real_or(50, 0.0).to_radians();
+        let a1 = f.real_or(51, 360.0).to_radians();
+        let mut sweep = (a1 - a0).rem_euclid(TAU);
+        if sweep == 0.0 && a1 != a0 {
+            sweep = TAU; // 0° to 360°: a whole circle written as an arc
+        }
+        (a0, sweep)
+    };
+    let arc = EllipseArc {
+        center: c,
+        u: Vector::new(r, 0.0),
+        v: Vector::new(0.0, r),
+        t0,
+        sweep,
+    };
+    let ocs = f.ocs(f.real_or(30, 0.0));
+    Ok(if sweep == 0.0 {
+        vec![]
+    } else {
+        vec![Curve::Ellipse(arc.transformed(&ocs))]
+    })
+}
+
+fn ellipse(f: &Fields) -> Result<Vec<Curve>, String> {
+    let c = f.point(10).ok_or("no centre")?;
+    let major = Vector::new(f.real_or(11, 0.0), f.real_or(21, 0.0));
+    let major_z = f.real_or(31, 0.0);
+    let ratio = f.real_or(40, 1.0);
+    if major.length() == 0.0 || ratio.is_nan() || ratio <= 0.0 {
+        return Err("degenerate ellipse (zero axis)".into());
+    }
+    let n = f.extrusion();
+    // Minor axis = normal × major, scaled by the ratio; projected on XY.
+    let minor = Vector::new(n[1] * major_z - n[2] * major.y, n[2] * major.x - n[0] * major_z) * ratio;
+    let t0 = f.real_or(41, 0.0);
+    let t1 = f.real_or(42, TAU);
+    let mut sweep = (t1 - t0).rem_euclid(TAU);
+    if sweep == 0.0 {
+        sweep = TAU;
+    }
+    Ok(vec![Curve::Ellipse(EllipseArc {
+        center: c,
+        u: major,
+        v: minor,
+        t0,
+        sweep,
+    })])
+}
+
+fn lwpolyline(e: &RawEntity, f: &Fields) -> Drawn {
+    let mut verts: Vec<(Point, f64)> = Vec::new();
+    for g in &e.groups {
+        match g.code {
+            10 => verts.push((Point::new(g.real().unwrap_or(f64::NAN), 0.0), 0.0)),
+            20 => {
+                if let Some(v) = verts.last_mut() {
+                    v.0.y = g.real().unwrap_or(f64::NAN);
+                }
+            }
+            42 => {
+                if let Some(v) = verts.last_mut() {
+                    v.1 = g.real().unwrap_or(0.0);
+                }
+            }
+            _ => {}
+        }
+    }
+    let closed = f.int_or(70, 0) & 1 == 1;
+    Drawn::Curves {
+        curves: polyline(&verts, closed, &f.ocs(f.real_or(38, 0.0))),
+        closed,
+    }
+}
+
+/// A POLYLINE with its VERTEX entities: 2D (bulges, in its OCS), 3D (projected), or a
+/// spline-fit one (its fitted vertices); meshes draw no outline.
+fn old_polyline(e: &RawEntity, f: &Fields) -> Result<Drawn, String> {
+    let flags = f.int_or(70, 0);
+    if flags & (16 | 64) != 0 {
+        return Ok(Drawn::Ignored); // polygon and polyface meshes are surfaces, not outlines
+    }
+    let is_3d = flags & 8 != 0;
+    let spline_fit = flags & 4 != 0;
+    let mut verts = Vec::new();
+    for v in &e.vertices {
+        let vf = Fields(v);
+        let vflags = vf.int_or(70, 0);
+        // A spline-fit polyline lists its frame (control) vertices too: draw the fitted ones.
+        if spline_fit && vflags & 16 != 0 {
+            continue;
+        }
+        let p = vf.point(10).ok_or("VERTEX without coordinates")?;
+        verts.push((p, if is_3d { 0.0 } else { vf.real_or(42, 0.0) }));
+    }
+    let m = if is_3d {
+        Affine::IDENTITY
+    } else {
+        f.ocs(f.real_or(30, 0.0))
+    };
+    let closed = flags & 1 == 1;
+    Ok(Drawn::Curves {
+        curves: polyline(&verts, closed, &m),
+        closed,
+    })
 }
 
 /// Lines and bulge arcs through `verts` (point, bulge to the next), mapped by `m`.
