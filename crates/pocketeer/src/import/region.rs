@@ -67,8 +67,55 @@ pub fn find_pockets(
     layer_names: &[String],
     tol: &Tolerance,
 ) -> Result<Regions, ImportError> {
-    let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
     let mut warnings = Vec::new();
+    let simple = simplified(contours, layer_names, tol, &mut warnings)?;
+    let contours = &simple[..];
+    let meetings = Meetings::find(contours, tol);
+    let crossing: HashSet<(usize, usize)> = meetings
+        .crossings
+        .iter()
+        .map(|&(a, b, _)| (a.min(b), a.max(b)))
+        .collect();
+    let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
+    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    let contour_index = BoxIndex::new(&contour_boxes);
+    let levels = nesting_levels(
+        contours,
+        (&contour_boxes, &contour_index),
+        &crossing,
+        &locator,
+        tol,
+    );
+    meetings.report(contours, &levels, layer_names, &mut warnings);
+
+    // Deepest level of the contours enclosing p (None outside all), read as "material removed
+    // here" when even.
+    let removed = |p: Point| {
+        contour_index
+            .at_point(p)
+            .filter(|&c| locator.contains(c, p))
+            .map(|c| levels[c])
+            .max()
+            .is_some_and(|l| l % 2 == 0)
+    };
+    let loops = meetings.loops(contours, &levels, &removed, tol, &mut warnings);
+    let pockets = assemble(loops, &mut warnings);
+    Ok(Regions {
+        pockets,
+        levels,
+        warnings,
+    })
+}
+
+/// The contours made simple: a sliver loop where one crosses itself is removed with a warning,
+/// any other crossing of a contour with itself is refused.
+fn simplified(
+    contours: &[ChainedContour],
+    layer_names: &[String],
+    tol: &Tolerance,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<ChainedContour>, ImportError> {
+    let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
     let mut simple = Vec::with_capacity(contours.len());
     for c in contours {
         let (contour, removed) = make_simple(&c.contour, tol).map_err(|x| ImportError::SelfCrossing {
@@ -84,124 +131,138 @@ pub fn find_pockets(
         }
         simple.push(ChainedContour { contour, ..c.clone() });
     }
-    let contours = &simple[..];
-    let refs: Vec<SegRef> = contours
-        .iter()
-        .enumerate()
-        .flat_map(|(c, cc)| (0..cc.contour.segments.len()).map(move |index| SegRef { contour: c, index }))
-        .collect();
-    let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
-    let boxes: Vec<Aabb> = refs.iter().map(|r| seg(r).bbox().inflated(tol.eps)).collect();
-    let index = BoxIndex::new(&boxes);
+    Ok(simple)
+}
 
-    // Cuts on every segment where another contour meets it, and which contours meet.
-    let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
-    let mut clusters = UnionFind::new(contours.len());
-    let mut crossings: Vec<(usize, usize, Point)> = Vec::new();
-    for (i, j) in index.pairs() {
-        let (a, b) = (refs[i], refs[j]);
-        let hits = intersect(seg(&a), seg(&b), tol.eps);
-        if hits.is_empty() {
-            continue;
-        }
-        if a.contour == b.contour {
-            continue; // made simple above
-        }
-        for h in hits.iter() {
-            let (pa, pb) = match h {
-                Intersection::Point { point, ta, tb } => (vec![(ta, point)], vec![(tb, point)]),
-                Intersection::Overlap {
-                    a: (a0, a1),
-                    b: (b0, b1),
-                } => {
-                    let (p0, p1) = (seg(&a).point_at(a0), seg(&a).point_at(a1));
-                    (vec![(a0, p0), (a1, p1)], vec![(b0, p0), (b1, p1)])
-                }
-            };
-            crossings.push((a.contour, b.contour, pa[0].1));
-            cuts.entry((a.contour, a.index)).or_default().extend(pa);
-            cuts.entry((b.contour, b.index)).or_default().extend(pb);
-        }
-        clusters.union(a.contour, b.contour);
-    }
-    let cluster: Vec<usize> = (0..contours.len()).map(|c| clusters.find(c)).collect();
+/// Where contours meet one another: the cuts on each segment, the groups of contours that
+/// meet (directly or through others), and one point of every meeting.
+struct Meetings {
+    /// Parameters and points where other contours meet segment (contour, index).
+    cuts: HashMap<(usize, usize), Vec<(f64, Point)>>,
+    /// The group of each contour (the id of one of its members).
+    cluster: Vec<usize>,
+    /// Each meeting: the two contours and a point.
+    crossings: Vec<(usize, usize, Point)>,
+}
 
-    let crossing: HashSet<(usize, usize)> = crossings.iter().map(|&(a, b, _)| (a.min(b), a.max(b))).collect();
-    let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
-    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
-    let contour_index = BoxIndex::new(&contour_boxes);
-    let levels = nesting_levels(
-        contours,
-        (&contour_boxes, &contour_index),
-        &crossing,
-        &locator,
-        tol,
-    );
-    let mut reported = HashSet::new();
-    for &(a, b, p) in &crossings {
-        if reported.insert((cluster[a], a.min(b), a.max(b))) {
-            let what = if levels[a] == levels[b] {
-                "overlap: merged"
-            } else {
-                "cross: cut back"
-            };
-            warnings.push(format!(
-                "contours on layers '{}' and '{}' meet at {}; they {what}",
-                layer_names.get(contours[a].layer).map_or("?", |s| s.as_str()),
-                layer_names.get(contours[b].layer).map_or("?", |s| s.as_str()),
-                p
-            ));
+impl Meetings {
+    fn find(contours: &[ChainedContour], tol: &Tolerance) -> Meetings {
+        let refs: Vec<SegRef> = contours
+            .iter()
+            .enumerate()
+            .flat_map(|(c, cc)| (0..cc.contour.segments.len()).map(move |index| SegRef { contour: c, index }))
+            .collect();
+        let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
+        let boxes: Vec<Aabb> = refs.iter().map(|r| seg(r).bbox().inflated(tol.eps)).collect();
+        let index = BoxIndex::new(&boxes);
+        let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
+        let mut clusters = UnionFind::new(contours.len());
+        let mut crossings: Vec<(usize, usize, Point)> = Vec::new();
+        for (i, j) in index.pairs() {
+            let (a, b) = (refs[i], refs[j]);
+            if a.contour == b.contour {
+                continue; // made simple before
+            }
+            let hits = intersect(seg(&a), seg(&b), tol.eps);
+            if hits.is_empty() {
+                continue;
+            }
+            for h in hits.iter() {
+                let (pa, pb) = match h {
+                    Intersection::Point { point, ta, tb } => (vec![(ta, point)], vec![(tb, point)]),
+                    Intersection::Overlap {
+                        a: (a0, a1),
+                        b: (b0, b1),
+                    } => {
+                        let (p0, p1) = (seg(&a).point_at(a0), seg(&a).point_at(a1));
+                        (vec![(a0, p0), (a1, p1)], vec![(b0, p0), (b1, p1)])
+                    }
+                };
+                crossings.push((a.contour, b.contour, pa[0].1));
+                cuts.entry((a.contour, a.index)).or_default().extend(pa);
+                cuts.entry((b.contour, b.index)).or_default().extend(pb);
+            }
+            clusters.union(a.contour, b.contour);
+        }
+        let cluster: Vec<usize> = (0..contours.len()).map(|c| clusters.find(c)).collect();
+        Meetings {
+            cuts,
+            cluster,
+            crossings,
         }
     }
 
-    // Deepest level of the contours enclosing p (None outside all), read as "material removed
-    // here" when even.
-    let removed = |p: Point| {
-        contour_index
-            .at_point(p)
-            .filter(|&c| locator.contains(c, p))
-            .map(|c| levels[c])
-            .max()
-            .is_some_and(|l| l % 2 == 0)
-    };
-
-    let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
-    for (c, &root) in cluster.iter().enumerate() {
-        members.entry(root).or_default().push(c);
-    }
-    let mut loops: Vec<Contour> = Vec::new();
-    let mut roots: Vec<usize> = members.keys().copied().collect();
-    roots.sort_unstable();
-    for root in roots {
-        let group = &members[&root];
-        if group.len() == 1 {
-            let c = &contours[group[0]].contour;
-            // Alone, a contour bounds removed material on its inside exactly when its level is even.
-            let want_ccw = levels[group[0]] % 2 == 0;
-            loops.push(if c.is_ccw() == want_ccw {
-                c.clone()
-            } else {
-                c.reversed()
-            });
-            continue;
+    /// One warning per pair of contours that meet: merged where they overlap at one level, cut
+    /// back where one crosses the other.
+    fn report(
+        &self,
+        contours: &[ChainedContour],
+        levels: &[usize],
+        layer_names: &[String],
+        warnings: &mut Vec<String>,
+    ) {
+        let mut reported = HashSet::new();
+        for &(a, b, p) in &self.crossings {
+            if reported.insert((self.cluster[a], a.min(b), a.max(b))) {
+                let what = if levels[a] == levels[b] {
+                    "overlap: merged"
+                } else {
+                    "cross: cut back"
+                };
+                warnings.push(format!(
+                    "contours on layers '{}' and '{}' meet at {}; they {what}",
+                    layer_names.get(contours[a].layer).map_or("?", |s| s.as_str()),
+                    layer_names.get(contours[b].layer).map_or("?", |s| s.as_str()),
+                    p
+                ));
+            }
         }
-        let pieces = boundary_pieces(contours, group, &cuts, &removed, tol);
-        let (stitched, lost) = stitch(pieces, tol);
-        if lost > 0 {
-            warnings.push(format!(
-                "{} of crossing contours could not be joined into loops and were left out",
-                crate::import::error::fmt_count(lost, "piece", "pieces")
-            ));
-        }
-        loops.extend(stitched);
     }
 
-    let pockets = assemble(loops, &mut warnings);
-    Ok(Regions {
-        pockets,
-        levels,
-        warnings,
-    })
+    /// The loops bounding removed material: a contour alone as it is (turned to have the
+    /// material on its left), the contours of a group that meet cut at their meetings and the
+    /// pieces with removed material on exactly one side stitched.
+    fn loops(
+        &self,
+        contours: &[ChainedContour],
+        levels: &[usize],
+        removed: &dyn Fn(Point) -> bool,
+        tol: &Tolerance,
+        warnings: &mut Vec<String>,
+    ) -> Vec<Contour> {
+        let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (c, &root) in self.cluster.iter().enumerate() {
+            members.entry(root).or_default().push(c);
+        }
+        let mut loops: Vec<Contour> = Vec::new();
+        let mut roots: Vec<usize> = members.keys().copied().collect();
+        roots.sort_unstable();
+        for root in roots {
+            let group = &members[&root];
+            if group.len() == 1 {
+                let c = &contours[group[0]].contour;
+                // Alone, a contour bounds removed material on its inside exactly when its level
+                // is even.
+                let want_ccw = levels[group[0]] % 2 == 0;
+                loops.push(if c.is_ccw() == want_ccw {
+                    c.clone()
+                } else {
+                    c.reversed()
+                });
+                continue;
+            }
+            let pieces = boundary_pieces(contours, group, &self.cuts, removed, tol);
+            let (stitched, lost) = stitch(pieces, tol);
+            if lost > 0 {
+                warnings.push(format!(
+                    "{} of crossing contours could not be joined into loops and were left out",
+                    crate::import::error::fmt_count(lost, "piece", "pieces")
+                ));
+            }
+            loops.extend(stitched);
+        }
+        loops
+    }
 }
 
 /// Points spread evenly along a contour, for deciding which side of another contour it lies on.
