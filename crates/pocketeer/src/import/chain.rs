@@ -5,9 +5,9 @@
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
+use super::nodes::Nodes;
 use super::Element;
 use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
-use crate::union_find::UnionFind;
 use std::collections::{HashMap, HashSet};
 
 /// A closed contour found by chaining.
@@ -57,15 +57,57 @@ pub struct Chains {
 }
 
 /// End `0` (start) or `1` (end) of an element.
-type End = (usize, u8);
+pub(super) type End = (usize, u8);
 
 /// Joins `elements` into closed contours, per layer.
 pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     let mut out = Chains::default();
     let mut alive = vec![true; elements.len()];
+    take_closed_polylines(elements, &mut alive, tol, &mut out);
+    out.duplicates_dropped = drop_covered(elements, &mut alive, tol);
+    take_full_circles(elements, &mut alive, tol, &mut out);
 
-    // A closed polyline is a contour as drawn: it is not taken apart and chained with others,
-    // so that two polylines sharing an edge both stay whole.
+    let nodes = Nodes::build(elements, &alive, tol);
+    out.gaps_closed = nodes.gaps_closed;
+    out.largest_gap = nodes.largest_gap;
+    if nodes.gaps_closed > 0 {
+        out.warnings.push(format!(
+            "{} between end points closed, the largest {:.6} mm at {}",
+            crate::import::error::fmt_count(nodes.gaps_closed, "gap", "gaps"),
+            nodes.largest_gap,
+            nodes.largest_gap_at
+        ));
+    }
+    // An element whose ends fall into one node has no length worth keeping, unless it is long
+    // (an arc of almost 360°), which closes on itself.
+    for (i, e) in elements.iter().enumerate() {
+        if alive[i]
+            && nodes.node((i, 0)) == nodes.node((i, 1))
+            && e.segment.length() <= 4.0 * tol.join.max(tol.eps)
+        {
+            alive[i] = false;
+            out.zero_length_dropped += 1;
+        }
+    }
+    let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
+    let mut used = vec![false; elements.len()];
+    for first in 0..elements.len() {
+        if alive[first] && !used[first] {
+            let (walk, closed) = walk_from(first, &partner, &mut used);
+            add_walk(elements, &walk, closed, &nodes, &mut out);
+        }
+    }
+    measure_gaps(&mut out.open);
+    // Report contours in drawing order.
+    out.contours
+        .sort_by_cached_key(|c| c.elements.iter().copied().min());
+    out
+}
+
+/// Takes the closed polylines out of the chaining: each is a contour as drawn, not taken
+/// apart and chained with others, so that two polylines sharing an edge both stay whole. One
+/// shorter than the join tolerance is dropped, one drawn there and back again ignored.
+fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Tolerance, out: &mut Chains) {
     let mut groups: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
     for (i, e) in elements.iter().enumerate() {
         if let Some(g) = e.closed_group {
@@ -96,10 +138,11 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
             elements: members.clone(),
         });
     }
+}
 
-    out.duplicates_dropped = drop_covered(elements, &mut alive, tol);
-
-    // Full circles are contours by themselves (or points, when smaller than the tolerance).
+/// Takes the full circles out of the chaining: contours by themselves (or points, when smaller
+/// than the tolerance).
+fn take_full_circles(elements: &[Element], alive: &mut [bool], tol: &Tolerance, out: &mut Chains) {
     for (i, e) in elements.iter().enumerate() {
         if let Segment::Arc(a) = e.segment {
             if alive[i] && a.is_full_circle() {
@@ -116,99 +159,73 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
             }
         }
     }
+}
 
-    let nodes = Nodes::build(elements, &alive, tol);
-    out.gaps_closed = nodes.gaps_closed;
-    out.largest_gap = nodes.largest_gap;
-    if nodes.gaps_closed > 0 {
-        out.warnings.push(format!(
-            "{} between end points closed, the largest {:.6} mm at {}",
-            crate::import::error::fmt_count(nodes.gaps_closed, "gap", "gaps"),
-            nodes.largest_gap,
-            nodes.largest_gap_at
-        ));
-    }
-    // An element whose ends fall into one node has no length worth keeping, unless it is long
-    // (an arc of almost 360°), which closes on itself.
-    for (i, e) in elements.iter().enumerate() {
-        if alive[i]
-            && nodes.node((i, 0)) == nodes.node((i, 1))
-            && e.segment.length() <= 4.0 * tol.join.max(tol.eps)
-        {
-            alive[i] = false;
-            out.zero_length_dropped += 1;
+/// The elements joined to `first` through `partner`, in order, each with whether it runs
+/// backwards, and whether they close: forward from its end, then, when that stops at a free
+/// end, backward from its start too. Marks them `used`.
+fn walk_from(first: usize, partner: &HashMap<End, End>, used: &mut [bool]) -> (Vec<(usize, bool)>, bool) {
+    let mut forward = vec![(first, false)];
+    used[first] = true;
+    let mut closed = false;
+    let mut at: End = (first, 1);
+    while let Some(&(next, next_end)) = partner.get(&at) {
+        if next == first {
+            closed = true;
+            break;
         }
-    }
-    let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
-
-    let mut used = vec![false; elements.len()];
-    for first in 0..elements.len() {
-        if !alive[first] || used[first] {
-            continue;
+        if used[next] {
+            break;
         }
-        // Walk forward from the first element's end; if the walk stops at a free end, walk
-        // backward from its start too.
-        let mut forward = vec![(first, false)];
-        used[first] = true;
-        let mut closed = false;
-        let mut at: End = (first, 1);
-        while let Some(&(next, next_end)) = partner.get(&at) {
-            if next == first {
-                closed = true;
+        used[next] = true;
+        forward.push((next, next_end == 1));
+        at = (next, 1 - next_end);
+    }
+    let mut walk = Vec::new();
+    if !closed {
+        let mut at: End = (first, 0);
+        while let Some(&(prev, prev_end)) = partner.get(&at) {
+            if used[prev] {
                 break;
             }
-            if used[next] {
-                break;
-            }
-            used[next] = true;
-            forward.push((next, next_end == 1));
-            at = (next, 1 - next_end);
+            used[prev] = true;
+            walk.push((prev, prev_end == 0));
+            at = (prev, 1 - prev_end);
         }
-        let mut walk = Vec::new();
-        if !closed {
-            let mut at: End = (first, 0);
-            while let Some(&(prev, prev_end)) = partner.get(&at) {
-                if used[prev] {
-                    break;
-                }
-                used[prev] = true;
-                walk.push((prev, prev_end == 0));
-                at = (prev, 1 - prev_end);
-            }
-            walk.reverse();
-        }
-        walk.extend(forward);
-        let layer = elements[first].layer;
-        if closed {
-            for lp in split_at_repeated_nodes(&walk, &nodes) {
-                let segs = lp
-                    .iter()
-                    .map(|&(i, rev)| snapped(&elements[i].segment, rev, i, &nodes))
-                    .collect();
-                out.contours.push(ChainedContour {
-                    contour: Contour::new(segs),
-                    layer,
-                    elements: lp.iter().map(|w| w.0).collect(),
-                });
-            }
-        } else {
-            let (s, e) = (walk[0], walk[walk.len() - 1]);
-            let start = nodes.point(if s.1 { (s.0, 1) } else { (s.0, 0) });
-            let end = nodes.point(if e.1 { (e.0, 0) } else { (e.0, 1) });
-            out.open.push(OpenChain {
+        walk.reverse();
+    }
+    walk.extend(forward);
+    (walk, closed)
+}
+
+/// A walk as contours (split where it passes a node twice) when it closes, else as an open
+/// chain with its free ends.
+fn add_walk(elements: &[Element], walk: &[(usize, bool)], closed: bool, nodes: &Nodes, out: &mut Chains) {
+    let layer = elements[walk[0].0].layer;
+    if closed {
+        for lp in split_at_repeated_nodes(walk, nodes) {
+            let segs = lp
+                .iter()
+                .map(|&(i, rev)| snapped(&elements[i].segment, rev, i, nodes))
+                .collect();
+            out.contours.push(ChainedContour {
+                contour: Contour::new(segs),
                 layer,
-                start,
-                end,
-                elements: walk.iter().map(|w| w.0).collect(),
-                nearest_gap: None,
+                elements: lp.iter().map(|w| w.0).collect(),
             });
         }
+    } else {
+        let (s, e) = (walk[0], walk[walk.len() - 1]);
+        let start = nodes.point(if s.1 { (s.0, 1) } else { (s.0, 0) });
+        let end = nodes.point(if e.1 { (e.0, 0) } else { (e.0, 1) });
+        out.open.push(OpenChain {
+            layer,
+            start,
+            end,
+            elements: walk.iter().map(|w| w.0).collect(),
+            nearest_gap: None,
+        });
     }
-    measure_gaps(&mut out.open);
-    // Report contours in drawing order.
-    out.contours
-        .sort_by_cached_key(|c| c.elements.iter().copied().min());
-    out
 }
 
 /// Fills in [`OpenChain::nearest_gap`] for every open chain.
@@ -318,125 +335,6 @@ fn covers(outer: &Segment, inner: &Segment, tol: f64) -> bool {
                 && (0..=4).all(|k| on(inner.point_at(k as f64 / 4.0)))
         }
         _ => false,
-    }
-}
-
-/// End points merged into nodes.
-struct Nodes {
-    /// Node of each element end: `node_of[2 * element + end]`.
-    node_of: Vec<usize>,
-    /// Node positions (mean of their end points).
-    pos: Vec<Point>,
-    gaps_closed: usize,
-    largest_gap: f64,
-    largest_gap_at: Point,
-}
-
-impl Nodes {
-    fn build(elements: &[Element], alive: &[bool], tol: &Tolerance) -> Nodes {
-        let n = elements.len();
-        let ends: Vec<Point> = (0..2 * n)
-            .map(|k| {
-                if k % 2 == 0 {
-                    elements[k / 2].segment.start()
-                } else {
-                    elements[k / 2].segment.end()
-                }
-            })
-            .collect();
-        let radius = tol.join.max(tol.eps);
-        let cell = |p: Point| ((p.x / radius).floor() as i64, (p.y / radius).floor() as i64);
-        // Grid cells hold linked lists of end indices (head in the map, links in `next`).
-        let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
-        let mut next = vec![usize::MAX; 2 * n];
-        let mut exact: HashMap<(u64, u64, usize), usize> = HashMap::new();
-        let mut sets = UnionFind::new(2 * n);
-        for k in 0..2 * n {
-            if !alive[k / 2] {
-                continue;
-            }
-            // An end exactly where an earlier one is joins it and everything it joins.
-            if let Some(&o) = exact.get(&(ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer)) {
-                sets.union(o, k);
-                continue;
-            }
-            exact.insert(
-                (ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer),
-                k,
-            );
-            let (cx, cy) = cell(ends[k]);
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    let mut o = grid.get(&(cx + dx, cy + dy)).copied().unwrap_or(usize::MAX);
-                    while o != usize::MAX {
-                        // Contours are chained within their layer only.
-                        if elements[o / 2].layer == elements[k / 2].layer
-                            && ends[o].distance(ends[k]) <= radius
-                        {
-                            sets.union(o, k);
-                        }
-                        o = next[o];
-                    }
-                }
-            }
-            let head = grid.entry((cx, cy)).or_insert(usize::MAX);
-            next[k] = *head;
-            *head = k;
-        }
-        let mut index: HashMap<usize, usize> = HashMap::new();
-        let mut node_of = vec![usize::MAX; 2 * n];
-        let mut sums: Vec<(f64, f64, usize)> = Vec::new();
-        for k in 0..2 * n {
-            if !alive[k / 2] {
-                continue;
-            }
-            let root = sets.find(k);
-            let id = *index.entry(root).or_insert_with(|| {
-                sums.push((0.0, 0.0, 0));
-                sums.len() - 1
-            });
-            node_of[k] = id;
-            sums[id].0 += ends[k].x;
-            sums[id].1 += ends[k].y;
-            sums[id].2 += 1;
-        }
-        let pos: Vec<Point> = sums
-            .iter()
-            .map(|&(x, y, c)| Point::new(x / c as f64, y / c as f64))
-            .collect();
-        let mut nodes = Nodes {
-            node_of,
-            pos,
-            gaps_closed: 0,
-            largest_gap: 0.0,
-            largest_gap_at: Point::ORIGIN,
-        };
-        let mut moved = vec![0.0f64; nodes.pos.len()];
-        for k in 0..2 * n {
-            if alive[k / 2] {
-                let id = nodes.node_of[k];
-                moved[id] = moved[id].max(ends[k].distance(nodes.pos[id]));
-            }
-        }
-        for (id, &m) in moved.iter().enumerate() {
-            // Rounding in the writer's coordinates is not a gap.
-            if m > tol.eps * 10.0 {
-                nodes.gaps_closed += 1;
-                if m > nodes.largest_gap {
-                    nodes.largest_gap = m;
-                    nodes.largest_gap_at = nodes.pos[id];
-                }
-            }
-        }
-        nodes
-    }
-
-    fn node(&self, (e, end): End) -> usize {
-        self.node_of[2 * e + end as usize]
-    }
-
-    fn point(&self, end: End) -> Point {
-        self.pos[self.node(end)]
     }
 }
 

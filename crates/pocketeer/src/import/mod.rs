@@ -10,6 +10,7 @@ pub mod dxf;
 mod entities;
 pub mod error;
 mod expand;
+mod nodes;
 pub mod region;
 pub mod simple;
 pub mod units;

@@ -1,0 +1,128 @@
+//! End points merged into nodes: ends within the join tolerance of each other (on one layer)
+//! are one node, at the mean of their positions; how far that moved them is reported as the
+//! gaps closed.
+
+use super::chain::End;
+use super::Element;
+use crate::geom::{Point, Tolerance};
+use crate::union_find::UnionFind;
+use std::collections::HashMap;
+
+/// End points merged into nodes.
+pub(super) struct Nodes {
+    /// Node of each element end: `node_of[2 * element + end]`.
+    pub(super) node_of: Vec<usize>,
+    /// Node positions (mean of their end points).
+    pub(super) pos: Vec<Point>,
+    pub(super) gaps_closed: usize,
+    pub(super) largest_gap: f64,
+    pub(super) largest_gap_at: Point,
+}
+
+impl Nodes {
+    pub(super) fn build(elements: &[Element], alive: &[bool], tol: &Tolerance) -> Nodes {
+        let n = elements.len();
+        let ends: Vec<Point> = (0..2 * n)
+            .map(|k| {
+                if k % 2 == 0 {
+                    elements[k / 2].segment.start()
+                } else {
+                    elements[k / 2].segment.end()
+                }
+            })
+            .collect();
+        let radius = tol.join.max(tol.eps);
+        let cell = |p: Point| ((p.x / radius).floor() as i64, (p.y / radius).floor() as i64);
+        // Grid cells hold linked lists of end indices (head in the map, links in `next`).
+        let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
+        let mut next = vec![usize::MAX; 2 * n];
+        let mut exact: HashMap<(u64, u64, usize), usize> = HashMap::new();
+        let mut sets = UnionFind::new(2 * n);
+        for k in 0..2 * n {
+            if !alive[k / 2] {
+                continue;
+            }
+            // An end exactly where an earlier one is joins it and everything it joins.
+            if let Some(&o) = exact.get(&(ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer)) {
+                sets.union(o, k);
+                continue;
+            }
+            exact.insert(
+                (ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer),
+                k,
+            );
+            let (cx, cy) = cell(ends[k]);
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    let mut o = grid.get(&(cx + dx, cy + dy)).copied().unwrap_or(usize::MAX);
+                    while o != usize::MAX {
+                        // Contours are chained within their layer only.
+                        if elements[o / 2].layer == elements[k / 2].layer
+                            && ends[o].distance(ends[k]) <= radius
+                        {
+                            sets.union(o, k);
+                        }
+                        o = next[o];
+                    }
+                }
+            }
+            let head = grid.entry((cx, cy)).or_insert(usize::MAX);
+            next[k] = *head;
+            *head = k;
+        }
+        let mut index: HashMap<usize, usize> = HashMap::new();
+        let mut node_of = vec![usize::MAX; 2 * n];
+        let mut sums: Vec<(f64, f64, usize)> = Vec::new();
+        for k in 0..2 * n {
+            if !alive[k / 2] {
+                continue;
+            }
+            let root = sets.find(k);
+            let id = *index.entry(root).or_insert_with(|| {
+                sums.push((0.0, 0.0, 0));
+                sums.len() - 1
+            });
+            node_of[k] = id;
+            sums[id].0 += ends[k].x;
+            sums[id].1 += ends[k].y;
+            sums[id].2 += 1;
+        }
+        let pos: Vec<Point> = sums
+            .iter()
+            .map(|&(x, y, c)| Point::new(x / c as f64, y / c as f64))
+            .collect();
+        let mut nodes = Nodes {
+            node_of,
+            pos,
+            gaps_closed: 0,
+            largest_gap: 0.0,
+            largest_gap_at: Point::ORIGIN,
+        };
+        let mut moved = vec![0.0f64; nodes.pos.len()];
+        for k in 0..2 * n {
+            if alive[k / 2] {
+                let id = nodes.node_of[k];
+                moved[id] = moved[id].max(ends[k].distance(nodes.pos[id]));
+            }
+        }
+        for (id, &m) in moved.iter().enumerate() {
+            // Rounding in the writer's coordinates is not a gap.
+            if m > tol.eps * 10.0 {
+                nodes.gaps_closed += 1;
+                if m > nodes.largest_gap {
+                    nodes.largest_gap = m;
+                    nodes.largest_gap_at = nodes.pos[id];
+                }
+            }
+        }
+        nodes
+    }
+
+    pub(super) fn node(&self, (e, end): End) -> usize {
+        self.node_of[2 * e + end as usize]
+    }
+
+    pub(super) fn point(&self, end: End) -> Point {
+        self.pos[self.node(end)]
+    }
+}
