@@ -46,44 +46,7 @@ pub fn raw_offset(
     // dropped between them if any; a joint needs two of them (a lone element among points
     // closes on itself, j = k, unless it is the whole contour, a circle).
     let adjacent = |k: usize, j: usize| k != j || segs.len() == 1;
-    // Where the moved elements overlap at a turn to the left, trim both to their crossing
-    // nearest the joint (so they meet in one node), as long as each keeps some length.
-    let mut from = vec![0.0; n];
-    let mut to = vec![1.0; n];
-    // How moved element i and the next one come together.
-    let mut joint = vec![Joint::Apart; n];
-    for i in 0..n {
-        let (k, a) = moved[i];
-        let (j, b) = moved[(i + 1) % n];
-        if a.end().distance(b.start()) <= 10.0 * tol.eps {
-            joint[i] = Joint::Meet;
-            continue;
-        }
-        if !adjacent(k, j) {
-            continue;
-        }
-        if right_turn(&segs[k], &segs[j], d) {
-            joint[i] = Joint::RightTurn;
-            continue;
-        }
-        if n < 2 {
-            continue;
-        }
-        let corner = segs[k].end();
-        let crossing = intersect(&a, &b, tol.eps)
-            .iter()
-            .filter_map(|h| match h {
-                Intersection::Point { point, ta, tb } => Some((point, ta, tb)),
-                Intersection::Overlap { .. } => None,
-            })
-            .filter(|&(_, ta, tb)| ta > from[i] && tb < to[(i + 1) % n])
-            .min_by(|x, y| x.0.distance(corner).total_cmp(&y.0.distance(corner)));
-        if let Some((_, ta, tb)) = crossing {
-            to[i] = ta;
-            from[(i + 1) % n] = tb;
-            joint[i] = Joint::Meet;
-        }
-    }
+    let Trims { from, to, joint } = trims(segs, &moved, d, tol, &adjacent);
     let first = next_node;
     next_node += n;
     // Node at the start of moved element i is first + i; its end is the next one's start, with
@@ -131,52 +94,145 @@ pub fn raw_offset(
         } else {
             b.start()
         };
+        let source = (joints + base + k) as u32;
+        let ends = (a.end(), b_start, end, next_start);
         let adjacent = adjacent(k, j);
-        let turns_right = joint[i] == Joint::RightTurn;
-        // A needle tip whose moved sides do not cross: see `tip_arc`.
-        if adjacent && !turns_right && near_reversal(&segs[k], &segs[j]) {
-            let (arc, whole) = tip_arc(segs[k].end(), d, a.end(), b_start);
-            let arc = Segment::Arc(arc);
-            let source = (joints + base + k) as u32;
-            let parts: Vec<(Segment, usize, usize)> = if whole {
-                vec![(arc, end, next_start)]
-            } else {
-                // Chord, arc, chord: the chords are judged alone, the arc with its run.
-                let (n1, n2) = (next_node, next_node + 1);
-                next_node += 2;
-                let chord = |p: crate::geom::Point, q: crate::geom::Point| Segment::Line(Line::new(p, q));
-                vec![
-                    (chord(a.end(), arc.start()), end, n1),
-                    (arc, n1, n2),
-                    (chord(arc.end(), b_start), n2, next_start),
-                ]
-            };
-            for (segment, start, end) in parts {
-                pieces.push(Piece {
-                    segment,
-                    start,
-                    end,
-                    source,
-                });
-            }
-            continue;
-        }
-        let join = if turns_right {
-            // The moved elements part: an arc of radius d around the joint, turning the same way.
-            let corner = segs[k].end();
-            let (a0, sweep) = clockwise_sweep(corner, a.end(), b_start);
-            Segment::Arc(Arc::new(corner, d, a0, sweep))
-        } else {
-            Segment::Line(Line::new(a.end(), b_start))
-        };
-        pieces.push(Piece {
-            segment: join,
-            start: end,
-            end: next_start,
-            source: (joints + base + k) as u32,
-        });
+        next_node = joining(
+            &segs[k],
+            &segs[j],
+            d,
+            adjacent,
+            joint[i],
+            ends,
+            source,
+            next_node,
+            &mut pieces,
+        );
     }
     (pieces, next_node)
+}
+
+/// How each moved element and the next come together, and how far each is trimmed.
+struct Trims {
+    /// Where moved element i starts, as a parameter of it (0: not trimmed).
+    from: Vec<f64>,
+    /// Where it ends (1: not trimmed).
+    to: Vec<f64>,
+    /// How moved element i and the next one come together.
+    joint: Vec<Joint>,
+}
+
+/// Works out the [`Trims`] of the `moved` elements of `segs` (each with the index of its
+/// original) at distance `d`; `adjacent(k, j)` tells whether originals k and j share a joint.
+fn trims(
+    segs: &[Segment],
+    moved: &[(usize, Segment)],
+    d: f64,
+    tol: &Tolerance,
+    adjacent: &dyn Fn(usize, usize) -> bool,
+) -> Trims {
+    // Where the moved elements overlap at a turn to the left, trim both to their crossing
+    // nearest the joint (so they meet in one node), as long as each keeps some length.
+    let n = moved.len();
+    let mut from = vec![0.0; n];
+    let mut to = vec![1.0; n];
+    // How moved element i and the next one come together.
+    let mut joint = vec![Joint::Apart; n];
+    for i in 0..n {
+        let (k, a) = moved[i];
+        let (j, b) = moved[(i + 1) % n];
+        if a.end().distance(b.start()) <= 10.0 * tol.eps {
+            joint[i] = Joint::Meet;
+            continue;
+        }
+        if !adjacent(k, j) {
+            continue;
+        }
+        if right_turn(&segs[k], &segs[j], d) {
+            joint[i] = Joint::RightTurn;
+            continue;
+        }
+        if n < 2 {
+            continue;
+        }
+        let corner = segs[k].end();
+        let crossing = intersect(&a, &b, tol.eps)
+            .iter()
+            .filter_map(|h| match h {
+                Intersection::Point { point, ta, tb } => Some((point, ta, tb)),
+                Intersection::Overlap { .. } => None,
+            })
+            .filter(|&(_, ta, tb)| ta > from[i] && tb < to[(i + 1) % n])
+            .min_by(|x, y| x.0.distance(corner).total_cmp(&y.0.distance(corner)));
+        if let Some((_, ta, tb)) = crossing {
+            to[i] = ta;
+            from[(i + 1) % n] = tb;
+            joint[i] = Joint::Meet;
+        }
+    }
+    Trims { from, to, joint }
+}
+
+/// The pieces joining moved element a (of original `seg_k`) to the next one b (of `seg_j`)
+/// where they do not meet, from node `end` at `a_end` to node `next_start` at `b_start`, and
+/// the next free node id: a tip arc at a needle (see `tip_arc`), an arc of radius `d` round
+/// the joint where they part (a right turn), else a straight line that the split stage cuts
+/// away with the overlap.
+#[allow(clippy::too_many_arguments)]
+fn joining(
+    seg_k: &Segment,
+    seg_j: &Segment,
+    d: f64,
+    adjacent: bool,
+    joint: Joint,
+    (a_end, b_start, end, next_start): (crate::geom::Point, crate::geom::Point, usize, usize),
+    source: u32,
+    mut next_node: usize,
+    pieces: &mut Vec<Piece>,
+) -> usize {
+    let turns_right = joint == Joint::RightTurn;
+    // A needle tip whose moved sides do not cross: see `tip_arc`.
+    if adjacent && !turns_right && near_reversal(seg_k, seg_j) {
+        let (arc, whole) = tip_arc(seg_k.end(), d, a_end, b_start);
+        let arc = Segment::Arc(arc);
+        let parts: Vec<(Segment, usize, usize)> = if whole {
+            vec![(arc, end, next_start)]
+        } else {
+            // Chord, arc, chord: the chords are judged alone, the arc with its run.
+            let (n1, n2) = (next_node, next_node + 1);
+            next_node += 2;
+            let chord = |p: crate::geom::Point, q: crate::geom::Point| Segment::Line(Line::new(p, q));
+            vec![
+                (chord(a_end, arc.start()), end, n1),
+                (arc, n1, n2),
+                (chord(arc.end(), b_start), n2, next_start),
+            ]
+        };
+        for (segment, start, end) in parts {
+            pieces.push(Piece {
+                segment,
+                start,
+                end,
+                source,
+            });
+        }
+        return next_node;
+    }
+    let join = if turns_right {
+        // The moved elements part: an arc of radius d around the joint, turning the same way.
+        let corner = seg_k.end();
+        let (a0, sweep) = clockwise_sweep(corner, a_end, b_start);
+        Segment::Arc(Arc::new(corner, d, a0, sweep))
+    } else {
+        Segment::Line(Line::new(a_end, b_start))
+    };
+    pieces.push(Piece {
+        segment: join,
+        start: end,
+        end: next_start,
+        source,
+    });
+    next_node
 }
 
 /// How two moved elements, consecutive in the ring, come together at the joint between them.
