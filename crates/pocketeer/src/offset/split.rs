@@ -2,7 +2,8 @@
 //! a spatial index, so that afterwards no two pieces cross.
 
 use crate::geom::{
-    for_each_overlapping_pair, intersect, Aabb, Intersection, Line, Piece, Point, Segment, Tolerance,
+    for_each_overlapping_pair, intersect, Aabb, Intersection, Intersections, Line, Piece, Point, Segment,
+    Tolerance,
 };
 use crate::union_find::UnionFind;
 
@@ -49,22 +50,8 @@ pub fn split(
 ) -> Result<Vec<Piece>, Overrun> {
     let near_end = 10.0 * tol.eps;
     let touch = tol.eps.max(TOUCH);
-    // A piece shorter than that is a point where the pieces before and after it meet: its
-    // ends become one node.
-    let long: Vec<Piece>;
-    let pieces = if pieces.iter().any(|p| p.segment.length() <= near_end) {
-        for p in pieces.iter().filter(|p| p.segment.length() <= near_end) {
-            nodes.union(p.start, p.end);
-        }
-        long = pieces
-            .iter()
-            .filter(|p| p.segment.length() > near_end)
-            .copied()
-            .collect();
-        &long[..]
-    } else {
-        pieces
-    };
+    let pieces = without_points(pieces, nodes, near_end);
+    let pieces = &pieces[..];
     let boxes: Vec<Aabb> = pieces.iter().map(|p| p.segment.bbox().inflated(touch)).collect();
     // All cuts in one list, (piece, cut), sorted afterwards: far fewer allocations than a
     // list per piece.
@@ -90,38 +77,18 @@ pub fn split(
         })
         .collect();
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
-        // Pieces joined end to start are one offset curve going on (tangent where an element
-        // runs smoothly into the next): near their node they stay within TOUCH of each other
-        // for a while without meeting, and only rounding decides their crossings.
+        // Joined end to start, or of one element or neighbouring ones: see `meetings`.
         let (a, b) = (ends[i], ends[j]);
         let joined = a.1 == b.0 || b.1 == a.0;
-        // Likewise pieces of one element or of neighbouring ones where the profile runs on
-        // smoothly: their offsets stay near each other for a while, running the same way.
-        // Where neighbours turn back at their joint (a hairpin: two walls 2d apart that
-        // meet), their offsets come near each other running opposite ways, as those of any
-        // walls 2d apart do, and meet within TOUCH.
         let neighbours = a.2.abs_diff(b.2) <= 1;
-        let (si, sj) = (&pieces[i].segment, &pieces[j].segment);
-        let hits = if joined {
-            intersect(si, sj, tol.eps)
-        } else if neighbours {
-            let near = intersect(si, sj, touch);
-            let opposed = |h: Intersection| {
-                let (ta, tb) = match h {
-                    Intersection::Point { ta, tb, .. } => (ta, tb),
-                    Intersection::Overlap { a, b } => (a.0, b.0),
-                };
-                si.tangent_at(ta).dot(sj.tangent_at(tb)) < 0.0
-            };
-            // Nothing within TOUCH is nothing within eps either: no second try then.
-            if near.iter().all(opposed) {
-                near
-            } else {
-                intersect(si, sj, tol.eps)
-            }
-        } else {
-            intersect(si, sj, touch)
-        };
+        let hits = meetings(
+            &pieces[i].segment,
+            &pieces[j].segment,
+            joined,
+            neighbours,
+            tol.eps,
+            touch,
+        );
         for h in hits.iter() {
             let (first, second) = match h {
                 Intersection::Point { point, ta, tb } => ((ta, tb, point), None),
@@ -156,6 +123,71 @@ pub fn split(
             at,
         });
     }
+    Ok(cut_at(pieces, cuts, nodes, near_end))
+}
+
+/// `pieces` without those shorter than `near_end`: each is a point where the pieces before
+/// and after it meet, and its ends become one node.
+fn without_points<'a>(
+    pieces: &'a [Piece],
+    nodes: &mut Nodes,
+    near_end: f64,
+) -> std::borrow::Cow<'a, [Piece]> {
+    if !pieces.iter().any(|p| p.segment.length() <= near_end) {
+        return std::borrow::Cow::Borrowed(pieces);
+    }
+    for p in pieces.iter().filter(|p| p.segment.length() <= near_end) {
+        nodes.union(p.start, p.end);
+    }
+    std::borrow::Cow::Owned(
+        pieces
+            .iter()
+            .filter(|p| p.segment.length() > near_end)
+            .copied()
+            .collect(),
+    )
+}
+
+/// Where two pieces meet, with the tolerance that fits how they lie. Pieces `joined` end to
+/// start are one offset curve going on (tangent where an element runs smoothly into the
+/// next): near their node they stay within TOUCH of each other for a while without meeting,
+/// and only rounding (`eps`) decides their crossings. Likewise pieces of one element or of
+/// `neighbours` where the profile runs on smoothly: their offsets stay near each other for a
+/// while, running the same way. Where neighbours turn back at their joint (a hairpin: two
+/// walls 2d apart that meet), their offsets come near each other running opposite ways, as
+/// those of any walls 2d apart do, and meet within `touch`, as all other pieces do.
+fn meetings(
+    si: &Segment,
+    sj: &Segment,
+    joined: bool,
+    neighbours: bool,
+    eps: f64,
+    touch: f64,
+) -> Intersections {
+    if joined {
+        return intersect(si, sj, eps);
+    }
+    if !neighbours {
+        return intersect(si, sj, touch);
+    }
+    let near = intersect(si, sj, touch);
+    let opposed = |h: Intersection| {
+        let (ta, tb) = match h {
+            Intersection::Point { ta, tb, .. } => (ta, tb),
+            Intersection::Overlap { a, b } => (a.0, b.0),
+        };
+        si.tangent_at(ta).dot(sj.tangent_at(tb)) < 0.0
+    };
+    // Nothing within TOUCH is nothing within eps either: no second try then.
+    if near.iter().all(opposed) {
+        near
+    } else {
+        intersect(si, sj, eps)
+    }
+}
+
+/// The pieces cut at `cuts` ((piece, cut), in any order): two cuts at one place are one node.
+fn cut_at(pieces: &[Piece], mut cuts: Vec<(usize, Cut)>, nodes: &mut Nodes, near_end: f64) -> Vec<Piece> {
     cuts.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1 .0.total_cmp(&b.1 .0)));
     let mut out = Vec::with_capacity(pieces.len() + cuts.len());
     let mut next = 0;
@@ -186,7 +218,7 @@ pub fn split(
             prev = cut;
         }
     }
-    Ok(out)
+    out
 }
 
 /// The part of `s` between two cuts, a line ending exactly on the cut points.
