@@ -2,11 +2,11 @@
 
 mod check;
 mod display;
+mod inspect;
 mod length;
 mod output;
 mod pocket;
 mod preview;
-mod report;
 mod sanity;
 
 use clap::{Args, Parser, Subcommand};
@@ -102,7 +102,7 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
 
 fn inspect(args: &InspectArgs) -> Result<(), Failure> {
     let analysis = read_analysis(&args.drawing)?;
-    let report = report::Report::new(&args.drawing.file.display().to_string(), &analysis);
+    let report = inspect::Report::new(&args.drawing.file.display().to_string(), &analysis);
     let text = if args.json {
         let mut t =
             serde_json::to_string_pretty(&report).map_err(|e| Failure(format!("cannot write JSON: {e}")))?;
@@ -122,7 +122,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     }
     output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
     let analysis = read_analysis(&args.drawing)?;
-    print_warnings(&report::import_warnings(&analysis));
+    print_warnings(&inspect::import_warnings(&analysis));
     let tol = &analysis.tolerance;
     let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
     let name = args.drawing.file.display();

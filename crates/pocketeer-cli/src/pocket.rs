@@ -353,7 +353,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     let analysis = read_analysis(&args.drawing)?;
     let name = args.drawing.file.display();
     let s = Settings::new(args, JobUnits::of(analysis.drawing.units))?;
-    let mut warnings = crate::report::import_warnings(&analysis);
+    let mut warnings = crate::inspect::import_warnings(&analysis);
     warnings.extend(crate::sanity::size_warnings(&analysis));
     crate::print_warnings(&warnings);
     let tol = &analysis.tolerance;

@@ -5,7 +5,7 @@ use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use pocketeer::geom::Pocket;
 use pocketeer::geom::{intersect, point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
-use pocketeer::import::simple::make_simple;
+use pocketeer::import::self_crossing::make_simple;
 use pocketeer::offset::offset_pocket;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -75,7 +75,10 @@ fn cavalier_area(pocket: &Pocket, d: f64) -> f64 {
         let Segment::Arc(a) = i.segments[0] else {
             unreachable!()
         };
-        let halves = Contour::new(vec![Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))]);
+        let halves = Contour::new(vec![
+            Segment::Arc(a.subsegment(0.0, 0.5)),
+            Segment::Arc(a.subsegment(0.5, 1.0)),
+        ]);
         plines.push(to_pline(&halves));
     }
     let shape = Shape::from_plines(plines);

@@ -233,7 +233,7 @@ fn paths_of(half: &Contour, subs: &[(usize, f64, f64, bool)]) -> Vec<Path> {
         .map(|pieces| Path {
             segments: pieces
                 .into_iter()
-                .map(|(i, t0, t1)| half.segments[i].sub(t0, t1))
+                .map(|(i, t0, t1)| half.segments[i].subsegment(t0, t1))
                 .collect(),
             closed: false,
         })

@@ -64,9 +64,10 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
         let mut segs = Vec::with_capacity(lc.contour.segments.len() + 1);
         for seg in &lc.contour.segments {
             match seg {
-                Segment::Arc(a) if a.is_full_circle() => {
-                    segs.extend([Segment::Arc(a.sub(0.0, 0.5)), Segment::Arc(a.sub(0.5, 1.0))])
-                }
+                Segment::Arc(a) if a.is_full_circle() => segs.extend([
+                    Segment::Arc(a.subsegment(0.0, 0.5)),
+                    Segment::Arc(a.subsegment(0.5, 1.0)),
+                ]),
                 _ => segs.push(*seg),
             }
         }

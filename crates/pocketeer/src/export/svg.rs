@@ -53,7 +53,7 @@ pub fn open_path_data(segments: &[Segment]) -> String {
                     1
                 };
                 for h in 0..halves {
-                    let piece = a.sub(h as f64 / halves as f64, (h + 1) as f64 / halves as f64);
+                    let piece = a.subsegment(h as f64 / halves as f64, (h + 1) as f64 / halves as f64);
                     let e = piece.end();
                     let large = u8::from(piece.sweep.abs() > std::f64::consts::PI);
                     let sweep = u8::from(piece.sweep > 0.0);

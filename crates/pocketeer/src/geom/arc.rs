@@ -243,7 +243,7 @@ impl Arc {
     }
 
     /// The piece between parameters `t0` and `t1`.
-    pub fn sub(&self, t0: f64, t1: f64) -> Arc {
+    pub fn subsegment(&self, t0: f64, t1: f64) -> Arc {
         Arc::new(
             self.center,
             self.radius,
@@ -254,7 +254,7 @@ impl Arc {
 
     /// The two pieces on either side of parameter `t`.
     pub fn split_at(&self, t: f64) -> (Arc, Arc) {
-        (self.sub(0.0, t), self.sub(t, 1.0))
+        (self.subsegment(0.0, t), self.subsegment(t, 1.0))
     }
 }
 

@@ -86,7 +86,7 @@ impl Line {
     }
 
     /// The piece between parameters `t0` and `t1`.
-    pub fn sub(&self, t0: f64, t1: f64) -> Line {
+    pub fn subsegment(&self, t0: f64, t1: f64) -> Line {
         Line::new(self.point_at(t0), self.point_at(t1))
     }
 }

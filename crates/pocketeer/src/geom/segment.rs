@@ -92,16 +92,16 @@ impl Segment {
     }
 
     /// The piece between parameters `t0` and `t1`.
-    pub fn sub(&self, t0: f64, t1: f64) -> Segment {
+    pub fn subsegment(&self, t0: f64, t1: f64) -> Segment {
         match self {
-            Segment::Line(l) => Segment::Line(l.sub(t0, t1)),
-            Segment::Arc(a) => Segment::Arc(a.sub(t0, t1)),
+            Segment::Line(l) => Segment::Line(l.subsegment(t0, t1)),
+            Segment::Arc(a) => Segment::Arc(a.subsegment(t0, t1)),
         }
     }
 
     /// The two pieces on either side of parameter `t`.
     pub fn split_at(&self, t: f64) -> (Segment, Segment) {
-        (self.sub(0.0, t), self.sub(t, 1.0))
+        (self.subsegment(0.0, t), self.subsegment(t, 1.0))
     }
 
     /// The two pieces on either side of the point of the segment nearest to `p`.

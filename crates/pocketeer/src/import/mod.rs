@@ -12,7 +12,7 @@ pub mod error;
 mod expand;
 mod nodes;
 pub mod region;
-pub mod simple;
+pub mod self_crossing;
 pub mod units;
 
 pub use analysis::{analyze, Analysis};

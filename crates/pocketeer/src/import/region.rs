@@ -10,7 +10,7 @@
 
 use super::chain::ChainedContour;
 use super::error::ImportError;
-use super::simple::make_simple;
+use super::self_crossing::make_simple;
 use crate::geom::{
     cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
     Segment, Tolerance, WindingIndex,
@@ -378,7 +378,7 @@ fn boundary_pieces(
                 if (t1 - t0) * s.length() <= 10.0 * tol.eps {
                     continue;
                 }
-                let mut piece = s.sub(t0, t1);
+                let mut piece = s.subsegment(t0, t1);
                 // The cut points are where the neighbouring pieces end: use them exactly.
                 if let Segment::Line(l) = &mut piece {
                     l.start = p0;

@@ -55,7 +55,7 @@ pub fn clip_invalid(
             let segment = if a == 0.0 && b == 1.0 {
                 p.segment
             } else {
-                p.segment.sub(a, b)
+                p.segment.subsegment(a, b)
             };
             out.push(Piece {
                 segment,

@@ -65,7 +65,7 @@ pub fn raw_offset(
             continue;
         }
         let a = if from[i] > 0.0 || to[i] < 1.0 {
-            a.sub(from[i], to[i])
+            a.subsegment(from[i], to[i])
         } else {
             a
         };

@@ -225,6 +225,6 @@ fn cut_at(pieces: &[Piece], mut cuts: Vec<(usize, Cut)>, nodes: &mut Nodes, near
 fn between(s: &Segment, a: Cut, b: Cut) -> Segment {
     match s {
         Segment::Line(_) => Segment::Line(Line::new(a.2, b.2)),
-        Segment::Arc(_) => s.sub(a.0, b.0),
+        Segment::Arc(_) => s.subsegment(a.0, b.0),
     }
 }

@@ -234,7 +234,7 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     }
     let safe = w.num(s.safe_z);
     w.line(&format!("G0 Z{safe}"));
-    w.at[2] = w.q(s.safe_z);
+    w.at[2] = w.quantized(s.safe_z);
     if let Some(n) = s.tool {
         for l in post.tool_change(n) {
             w.line(&l);
@@ -348,7 +348,7 @@ impl Writer {
     }
 
     /// A coordinate as it will be printed (None when too large to quantize).
-    fn q(&self, mm: f64) -> Option<i64> {
+    fn quantized(&self, mm: f64) -> Option<i64> {
         quantize(mm * self.scale, self.decimals)
     }
 
@@ -372,7 +372,7 @@ impl Writer {
         self.out.push_str(word);
         let mut moved = false;
         for (k, (name, v)) in [('X', to.x), ('Y', to.y), ('Z', to.z)].into_iter().enumerate() {
-            let n = self.q(v);
+            let n = self.quantized(v);
             if n.is_none() || self.at[k] != n {
                 self.out.push(' ');
                 self.out.push(name);
@@ -390,7 +390,7 @@ impl Writer {
         if let Some((i, j)) = ij {
             for (name, v) in [(" I", i), (" J", j)] {
                 self.out.push_str(name);
-                match self.q(v) {
+                match self.quantized(v) {
                     Some(n) => push_fixed(&mut self.out, n, self.decimals),
                     None => {
                         let t = self.num(v);
@@ -431,7 +431,8 @@ impl Writer {
     /// as an arc (its printed ends equal, or shorter than a thousandth of a millimetre).
     fn arc_piece(&mut self, from: Point3, to: Point3, center: Point, sweep: f64, feed: &str) {
         let radius = center.distance(from.xy());
-        let same_ends = self.q(from.x) == self.q(to.x) && self.q(from.y) == self.q(to.y);
+        let same_ends =
+            self.quantized(from.x) == self.quantized(to.x) && self.quantized(from.y) == self.quantized(to.y);
         if radius * sweep.abs() < 1e-3 || same_ends {
             self.motion("G1", to, None, feed);
             return;

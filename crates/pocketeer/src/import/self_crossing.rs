@@ -115,7 +115,7 @@ fn split_loops(c: &Contour, i: usize, j: usize, ta: f64, tb: f64, p: Point) -> (
             if (t1 - t0) * s.length() <= 0.0 {
                 return None;
             }
-            let mut out = s.sub(t0, t1);
+            let mut out = s.subsegment(t0, t1);
             if let Segment::Line(l) = &mut out {
                 *l = Line::new(start.unwrap_or(l.start), end.unwrap_or(l.end));
             }

@@ -1,4 +1,5 @@
-//! What `inspect` prints, as one serialisable value rendered as text or JSON.
+//! `pocketeer inspect`: what a drawing holds, as one serialisable value rendered as text or
+//! JSON; and the importer's warnings, which every command prints.
 
 use crate::display::count;
 use pocketeer::geom::Point;
