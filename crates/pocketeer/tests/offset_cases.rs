@@ -1,7 +1,6 @@
 //! Offsets of pockets with known answers, and the invariants every offset loop must keep.
 
-use pocketeer::geom::Pocket;
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::geom::{point_distance, Arc, Contour, Line, Pocket, Point, Segment, Tolerance};
 use pocketeer::offset::{offset_contour, offset_pocket};
 use std::f64::consts::{PI, TAU};
 
@@ -34,7 +33,12 @@ fn check_loops(pocket: &Pocket, loops: &[Contour], d: f64) {
                     (dist - d).abs() <= 1e-6 * d.max(1.0),
                     "{p:?} is {dist} from the profile, not {d}"
                 );
-                assert!(pocket.boundary.contains(p) || dist < d);
+                // Inside the region: within the boundary and outside every island (a point at d
+                // from the profile is never on it).
+                assert!(
+                    pocket.boundary.contains(p) && !pocket.islands.iter().any(|i| i.contains(p)),
+                    "{p:?} is outside the pocket"
+                );
             }
         }
         // Closed, exactly.
