@@ -28,4 +28,4 @@ pub use point::{Point, Vector};
 pub use segment::Segment;
 pub use stitch::{cluster_points, stitch, Piece};
 pub(crate) use stitch::{stitch_kept, PieceGraph};
-pub use tolerance::{Tolerance, DEFAULT_JOIN_TOLERANCE};
+pub use tolerance::{offset_slack, Tolerance, DEFAULT_JOIN_TOLERANCE, JOIN_SLACK, NEAR_REVERSAL, TOUCH};

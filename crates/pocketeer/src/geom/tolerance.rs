@@ -1,4 +1,7 @@
-//! The two tolerances of the library, named and passed explicitly.
+//! The tolerances of the library, named in one place: the two a drawing sets (join, epsilon,
+//! passed explicitly as [`Tolerance`]), the multiples of epsilon that mean "the same place",
+//! and the fixed distances and angles the offset engine decides by, each with what it
+//! protects against.
 
 use super::Aabb;
 
@@ -49,6 +52,46 @@ impl Tolerance {
             eps: scale * RELATIVE_EPSILON,
         }
     }
+}
+
+impl Tolerance {
+    /// Ten epsilons: lengths and distances below this are rounding. A segment this short is a
+    /// point, two ends this near are one place, and a gap this small between a writer's
+    /// coordinates is not a gap.
+    ///
+    /// ```
+    /// use pocketeer::geom::Tolerance;
+    /// let tol = Tolerance::default();
+    /// assert_eq!(tol.rounding(), 10.0 * tol.eps);
+    /// ```
+    pub fn rounding(&self) -> f64 {
+        10.0 * self.eps
+    }
+}
+
+/// Distance (mm) within which two raw offset curves count as meeting: they touch where they
+/// come this near, and run together where they stay this near. Offsets of walls drawn exactly
+/// 2d apart coincide only to the precision of the drawing (a DXF written to six decimals puts
+/// them up to a micrometre apart): a crossing missed there leaves a piece that is valid along
+/// part of its length and judged whole, and loses the loop it bounds. Pieces cut at such a
+/// touch stay within this distance of the offset, inside the accuracy of 1e-6 mm.
+pub const TOUCH: f64 = 5e-7;
+
+/// How far inside the offset distance a joining chord may come and still close a loop, mm:
+/// far below any machining tolerance, far above rounding.
+pub const JOIN_SLACK: f64 = 1e-5;
+
+/// Sine of the angle from a full reversal below which a joint's side is taken from the
+/// elements' curvature as well as their tangents (about six degrees: a line meeting a
+/// semicircle 0.02 mm across at 179.1° is a slit at the scale of a 0.6 mm offset).
+pub const NEAR_REVERSAL: f64 = 0.1;
+
+/// How far inside `d` an offset piece may come and still count as at distance `d`: exact
+/// offset pieces are at distance d up to rounding, far below ten epsilons; where offset curves
+/// touch or run together to within [`TOUCH`] the split took them as meeting, and the pieces
+/// there are as far inside d as the curves are apart. Never more than a thousandth of `d`.
+pub fn offset_slack(d: f64, tol: &Tolerance) -> f64 {
+    tol.rounding().max(TOUCH).min(1e-3 * d)
 }
 
 impl Default for Tolerance {

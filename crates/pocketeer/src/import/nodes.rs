@@ -107,7 +107,7 @@ impl Nodes {
         }
         for (id, &m) in moved.iter().enumerate() {
             // Rounding in the writer's coordinates is not a gap.
-            if m > tol.eps * 10.0 {
+            if m > tol.rounding() {
                 nodes.gaps_closed += 1;
                 if m > nodes.largest_gap {
                     nodes.largest_gap = m;

@@ -375,7 +375,7 @@ fn boundary_pieces(
             at.sort_by(|a, b| a.0.total_cmp(&b.0));
             for w in at.windows(2) {
                 let ((t0, p0), (t1, p1)) = (w[0], w[1]);
-                if (t1 - t0) * s.length() <= 10.0 * tol.eps {
+                if (t1 - t0) * s.length() <= tol.rounding() {
                     continue;
                 }
                 let mut piece = s.subsegment(t0, t1);

@@ -232,7 +232,7 @@ impl<'a> Linker<'a> {
     /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from
     /// every wall and island.
     fn stays_inside(&self, a: Point, b: Point, d: f64) -> bool {
-        let slack = 1e-6 * d.max(1.0) + 10.0 * self.tol.eps;
+        let slack = 1e-6 * d.max(1.0) + self.tol.rounding();
         a.distance(b) <= slack
             || !self.region().segment_nearer_than(
                 &Segment::Line(crate::geom::Line::new(a, b)),
@@ -357,7 +357,7 @@ impl<'a> Linker<'a> {
                 self.retract();
             }
         }
-        let closed = segments[0].start().distance(segments[segments.len() - 1].end()) <= 10.0 * self.tol.eps;
+        let closed = segments[0].start().distance(segments[segments.len() - 1].end()) <= self.tol.rounding();
         let walk: Vec<Segment> = if closed {
             segments.to_vec()
         } else {

@@ -1,14 +1,9 @@
 //! Throwing away invalid pieces (paper §6): a piece is kept only when it is nowhere closer than
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
-use super::split::TOUCH;
 use crate::geom::PieceGraph;
-use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance};
+use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance, JOIN_SLACK};
 use crate::union_find::UnionFind;
-
-/// How far inside the offset distance a joining chord may come and still close a loop, mm:
-/// far below any machining tolerance, far above rounding.
-const JOIN_SLACK: f64 = 1e-5;
 
 /// The most element distances [`prune`] may measure: a few seconds. Each run is judged by
 /// one point; only where the offset is cut into millions of runs, each point having most of
@@ -16,12 +11,10 @@ const JOIN_SLACK: f64 = 1e-5;
 /// pocket of many elements holds), would it take longer.
 pub const MAX_MEASURES: u64 = 40_000_000;
 
-/// How far inside `d` a piece may come and still count as at distance `d`: exact offset
-/// pieces are at distance d up to rounding, far below ten epsilons; where offset curves
-/// touch or run together to within [`TOUCH`] the split took them as meeting, and the pieces
-/// there are as far inside d as the curves are apart.
+/// How far inside `d` a piece may come and still count as at distance `d`: see
+/// [`crate::geom::offset_slack`].
 pub fn slack(d: f64, tol: &Tolerance) -> f64 {
-    (10.0 * tol.eps).max(TOUCH).min(1e-3 * d)
+    crate::geom::offset_slack(d, tol)
 }
 
 /// The original profile, indexed for distance queries.

@@ -1,6 +1,7 @@
 //! Raw offset (paper §4): every line moved sideways by d, every arc's radius changed by d, and
 //! an arc of radius d around every joint where the moved elements part.
 
+use crate::geom::NEAR_REVERSAL;
 use crate::geom::{intersect, Arc, Contour, Intersection, Line, Piece, Segment, Tolerance};
 use std::f64::consts::PI;
 
@@ -141,7 +142,7 @@ fn trims(
     for i in 0..n {
         let (k, a) = moved[i];
         let (j, b) = moved[(i + 1) % n];
-        if a.end().distance(b.start()) <= 10.0 * tol.eps {
+        if a.end().distance(b.start()) <= tol.rounding() {
             joint[i] = Joint::Meet;
             continue;
         }
@@ -319,11 +320,6 @@ fn right_turn(a: &Segment, b: &Segment, d: f64) -> bool {
     lateral.is_nan() || lateral <= 1e-12 * s
 }
 
-/// Sine of the angle from a full reversal below which a joint's side is taken from the
-/// elements' curvature as well as their tangents (about six degrees: a line meeting a
-/// semicircle 0.02 mm across at 179.1° is a slit at the scale of a 0.6 mm offset).
-const NEAR_REVERSAL: f64 = 0.1;
-
 /// Signed curvature of a segment: 1/radius for a counter-clockwise arc, negative for a
 /// clockwise one, 0 for a line.
 fn curvature(s: &Segment) -> f64 {
@@ -341,7 +337,7 @@ fn curvature(s: &Segment) -> f64 {
 fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
     match s {
         Segment::Line(l) => {
-            if l.length() <= 10.0 * tol.eps {
+            if l.length() <= tol.rounding() {
                 return None;
             }
             let n = l.direction()?.perp() * d;
@@ -350,7 +346,7 @@ fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
         Segment::Arc(a) => {
             // Left of a counter-clockwise arc is towards its centre.
             let r = if a.sweep > 0.0 { a.radius - d } else { a.radius + d };
-            if r.abs() <= 10.0 * tol.eps {
+            if r.abs() <= tol.rounding() {
                 // Offset onto its centre: a point, kept (as a line of no length) so that the
                 // joints on either side still get their node arcs through it; split contracts
                 // it into one node.

@@ -13,13 +13,7 @@ pub type Nodes = UnionFind;
 /// A cut: where on the piece (parameter), which node, and the point.
 type Cut = (f64, usize, Point);
 
-/// Distance (mm) within which two raw offset curves count as meeting: they touch where they
-/// come this near, and run together where they stay this near. Offsets of walls drawn exactly
-/// 2d apart coincide only to the precision of the drawing (a DXF written to six decimals puts
-/// them up to a micrometre apart): a crossing missed there leaves a piece that is valid along
-/// part of its length and judged whole, and loses the loop it bounds. Pieces cut at such a
-/// touch stay within this distance of the offset, inside the accuracy of 1e-6 mm.
-pub const TOUCH: f64 = 5e-7;
+use crate::geom::TOUCH;
 
 /// How far [`split`] got before giving up.
 #[derive(Debug, Clone, Copy)]
@@ -48,7 +42,7 @@ pub fn split(
     budget: (u64, usize),
     elements: usize,
 ) -> Result<Vec<Piece>, Overrun> {
-    let near_end = 10.0 * tol.eps;
+    let near_end = tol.rounding();
     let touch = tol.eps.max(TOUCH);
     let pieces = without_points(pieces, nodes, near_end);
     let pieces = &pieces[..];
