@@ -21,13 +21,13 @@ pub struct CheckArgs {
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     depth: Option<f64>,
     /// Rapid speed of the machine for the time estimate, per minute.
-    #[arg(long, default_value = "5000", value_parser = parse_rate, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = pocketeer::simulate::check::RAPID_RATE, value_parser = parse_rate, allow_hyphen_values = true)]
     rapid_rate: f64,
     /// Largest gouge accepted.
-    #[arg(long, default_value = "0.01", value_parser = parse_nonneg_length, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = pocketeer::simulate::check::GOUGE_TOLERANCE, value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     gouge_tolerance: f64,
     /// Thickest leftover accepted.
-    #[arg(long, default_value = "0.05", value_parser = parse_nonneg_length, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = pocketeer::simulate::check::LEFTOVER_TOLERANCE, value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     leftover_tolerance: f64,
     /// Print the report as JSON.
     #[arg(long)]

@@ -169,7 +169,7 @@ impl Defaults {
                 plunge_feed: 300.0,
                 safe_z: 5.0,
                 feed_height: 1.0,
-                rapid_rate: 5000.0,
+                rapid_rate: pocketeer::simulate::check::RAPID_RATE,
             },
             JobUnits::Inches => Defaults {
                 feed: 40.0 * 25.4,
@@ -489,8 +489,8 @@ fn self_check(
     let params = pocketeer::simulate::CheckParams {
         tool_radius: 0.5 * s.diameter,
         depth: Some(s.depth),
-        gouge_tolerance: 0.01,
-        leftover_tolerance: 0.05,
+        gouge_tolerance: pocketeer::simulate::check::GOUGE_TOLERANCE,
+        leftover_tolerance: pocketeer::simulate::check::LEFTOVER_TOLERANCE,
         rapid_rate: s.rapid_rate,
     };
     let read = pocketeer::simulate::read_program(program)

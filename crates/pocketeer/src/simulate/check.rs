@@ -20,6 +20,14 @@ pub const CHORD: f64 = 0.001;
 /// Rapid speed assumed for time estimates unless told, mm/min.
 pub const RAPID_RATE: f64 = 5000.0;
 
+/// The largest gouge a program may make unless told otherwise, mm: the design's measure of
+/// correct.
+pub const GOUGE_TOLERANCE: f64 = 0.01;
+
+/// The thickest leftover a program may leave unless told otherwise, mm: the design's measure
+/// of correct.
+pub const LEFTOVER_TOLERANCE: f64 = 0.05;
+
 /// What to check against.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CheckParams {
