@@ -97,7 +97,24 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
         join_tolerance: args.join_tolerance,
         ignore_open: args.ignore_open,
     };
-    pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}")))
+    pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}{}", advice(&e))))
+}
+
+/// What the user can do about an import error, in the flags of this command line: the
+/// library's errors carry the numbers, the CLI words the advice.
+fn advice(e: &pocketeer::ImportError) -> String {
+    use pocketeer::ImportError;
+    match e {
+        ImportError::NoClosedContour { .. } => "; close the outline or raise --join-tolerance".into(),
+        ImportError::OpenOutline { gap, .. } => format!(
+            "; close it{}, leave its layer out with --layers, or pass --ignore-open",
+            // Joining ends farther apart than a millimetre merges separate shapes.
+            gap.filter(|g| *g <= 1.0)
+                .map(|g| format!(" or raise --join-tolerance above {g:.4} mm"))
+                .unwrap_or_default()
+        ),
+        _ => String::new(),
+    }
 }
 
 fn inspect(args: &InspectArgs) -> Result<(), Failure> {

@@ -438,6 +438,13 @@ fn a_refusal_never_suggests_a_join_tolerance_over_a_millimetre() {
         err.contains("does not close") && !err.contains("--join-tolerance"),
         "{err}"
     );
+    assert!(err.contains("--layers, or pass --ignore-open"), "{err}");
+    // A gap of half a millimetre: the tolerance that would close it is worth naming.
+    let near: &[(f64, f64)] = &[(0.5, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0), (0.0, 0.0)];
+    std::fs::write(&drawing, dxf(&[(near, false)], &[(30.0, 20.0, 6.0)], 4)).unwrap();
+    let res = pocket(&drawing, &dir.path().join("gap.nc"), &[]);
+    let err = text(&res.stderr);
+    assert!(err.contains("or raise --join-tolerance above 0.5000 mm"), "{err}");
 }
 
 #[test]

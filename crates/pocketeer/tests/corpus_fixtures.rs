@@ -45,7 +45,7 @@ fn binary_dxf_r12_and_r2000_are_read() {
     }
     // The R12 file draws an open polyline: read, then refused for having no closed contour.
     let r12 = analyze_file("corpus/mit/bin_dxf_r12.dxf").unwrap_err();
-    assert!(matches!(r12, ImportError::NoClosedContour(_)), "{r12}");
+    assert!(matches!(r12, ImportError::NoClosedContour { .. }), "{r12}");
     // The R2000 file holds a single TEXT.
     let r2000 = analyze_file("corpus/mit/bin_dxf_r2000.dxf").unwrap_err();
     assert!(r2000.to_string().contains("1 TEXT"), "{r2000}");

@@ -26,22 +26,10 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
     let tolerance = drawing.tolerance(options.join_tolerance);
     let chains = super::chain(&drawing.elements, &tolerance);
     if chains.contours.is_empty() {
-        let ends: Vec<String> = chains
-            .open
-            .iter()
-            .take(5)
-            .map(|o| format!("{} to {}", o.start, o.end))
-            .collect();
-        let more = if chains.open.len() > 5 {
-            format!(" and {} more", chains.open.len() - 5)
-        } else {
-            String::new()
-        };
-        return Err(ImportError::NoClosedContour(format!(
-            "{}, free ends {}{more}; close the outline or raise --join-tolerance",
-            super::error::fmt_count(chains.open.len(), "open chain", "open chains"),
-            ends.join(", ")
-        )));
+        return Err(ImportError::NoClosedContour {
+            open: chains.open.len(),
+            ends: chains.open.iter().take(5).map(|o| (o.start, o.end)).collect(),
+        });
     }
     if !options.ignore_open {
         refuse_open_outlines(&drawing, &chains)?;

@@ -65,6 +65,17 @@ pub fn fmt_count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// `a to b, c to d` for the ends listed, and how many chains more there are.
+fn free_ends(ends: &[(Point, Point)], open: usize) -> String {
+    let listed: Vec<String> = ends.iter().map(|(a, b)| format!("{a} to {b}")).collect();
+    let more = open.saturating_sub(ends.len());
+    if more > 0 {
+        format!("{} and {more} more", listed.join(", "))
+    } else {
+        listed.join(", ")
+    }
+}
+
 /// Why a drawing could not be imported.
 #[derive(Debug, Error)]
 pub enum ImportError {
@@ -116,15 +127,19 @@ pub enum ImportError {
     /// Nothing drawn in model space (after the layer filter).
     #[error("{0}")]
     Empty(String),
-    /// No closed contour could be formed.
-    #[error("no closed contour: {0}")]
-    NoClosedContour(String),
+    /// No closed contour could be formed: the open chains, and the free ends of the first few.
+    #[error("no closed contour: {}, free ends {}", fmt_count(*.open, "open chain", "open chains"), free_ends(.ends, *.open))]
+    NoClosedContour {
+        /// How many open chains the drawing has.
+        open: usize,
+        /// The free ends of the first five.
+        ends: Vec<(Point, Point)>,
+    },
     /// An open chain surrounds closed contours: most likely a pocket outline that does not close.
     #[error(
-        "the open chain of {} on layer '{layer}' (free ends at {} and {}) surrounds {}: it looks like a pocket outline that does not close; close it{}, leave its layer out with --layers, or pass --ignore-open",
+        "the open chain of {} on layer '{layer}' (free ends at {} and {}) surrounds {}: it looks like a pocket outline that does not close",
         fmt_count(*.elements, "element", "elements"), .start, .end,
         fmt_count(*.surrounded, "closed contour", "closed contours"),
-        .gap.filter(|g| *g <= 1.0).map(|g| format!(" or raise --join-tolerance above {g:.4} mm")).unwrap_or_default()
     )]
     OpenOutline {
         /// Layer of the chain.
