@@ -163,7 +163,7 @@ pub fn check_program(
         }
     }
     report.swept = swept(moves, final_depth, r);
-    report.wall_sides = super::side::material_sides(moves, &walls.all, final_depth, r);
+    report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
         let pc = pocket_check(p, &walls.regions[i], &report.swept, gouges[i], r, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
@@ -238,20 +238,24 @@ struct Walls {
     regions: Vec<Region>,
     /// The walls and islands of each pocket.
     each: Vec<SegmentIndex>,
-    /// Every pocket's walls and islands together.
-    all: SegmentIndex,
 }
 
 impl Walls {
     fn new(pockets: &[Pocket]) -> Walls {
         let segments =
             |p: &Pocket| -> Vec<Segment> { p.contours().flat_map(|c| c.segments.iter().copied()).collect() };
-        let all: Vec<Segment> = pockets.iter().flat_map(segments).collect();
         Walls {
             regions: pockets.iter().map(Region::new).collect(),
             each: pockets.iter().map(|p| SegmentIndex::new(&segments(p))).collect(),
-            all: SegmentIndex::new(&all),
         }
+    }
+
+    /// The walls of the pocket `p` lies in, if any.
+    fn of_pocket_at(&self, p: Point) -> Option<&SegmentIndex> {
+        self.regions
+            .iter()
+            .position(|region| region.contains(p))
+            .map(|i| &self.each[i])
     }
 
     /// How far the disc of radius `r` moving along `seg` reaches beyond the walls of the pocket

@@ -7,7 +7,7 @@
 //! disc touches a wall follows it, and the nearest wall point tells the side.
 
 use super::gcode::{Motion, ProgramMove};
-use crate::geom::{Segment, SegmentIndex};
+use crate::geom::{Point, Segment, SegmentIndex};
 use serde::Serialize;
 
 /// How far the tool centre may be from the radius off the wall and still follow it, mm.
@@ -38,21 +38,32 @@ impl Sides {
 }
 
 /// Measures the sides along the feed moves of `moves` that lie at `depth` or below (Z ≤
-/// `depth`, both ends), for a tool of radius `r` and the walls `walls` (every pocket's
-/// boundary and islands). Each move is sampled every tenth of the radius; a sample counts
-/// when the tool centre is within [`WALL_SLACK`] of `r` from the nearest wall.
-pub fn material_sides(moves: &[ProgramMove], walls: &SegmentIndex, depth: f64, r: f64) -> Sides {
+/// `depth`, both ends), for a tool of radius `r`; `walls_at(p)` gives the walls and islands
+/// of the pocket the tool centre `p` is in (the walls of other pockets, beyond an island, are
+/// not the material being milled). Each move is sampled every tenth of the radius; a sample
+/// counts when the tool centre is within [`WALL_SLACK`] of `r` from the nearest wall.
+pub fn material_sides<'w>(
+    moves: &[ProgramMove],
+    walls_at: &dyn Fn(Point) -> Option<&'w SegmentIndex>,
+    depth: f64,
+    r: f64,
+) -> Sides {
     let mut sides = Sides::default();
     for m in moves {
         if m.motion == Motion::Rapid || m.from.z > depth + 1e-4 || m.to.z > depth + 1e-4 {
             continue;
         }
-        add_move(&mut sides, &m.footprint(), walls, r);
+        add_move(&mut sides, &m.footprint(), walls_at, r);
     }
     sides
 }
 
-fn add_move(sides: &mut Sides, footprint: &Segment, walls: &SegmentIndex, r: f64) {
+fn add_move<'w>(
+    sides: &mut Sides,
+    footprint: &Segment,
+    walls_at: &dyn Fn(Point) -> Option<&'w SegmentIndex>,
+    r: f64,
+) {
     let len = footprint.length();
     if len <= 0.0 {
         return;
@@ -62,8 +73,8 @@ fn add_move(sides: &mut Sides, footprint: &Segment, walls: &SegmentIndex, r: f64
     for k in 0..n {
         let t = (k as f64 + 0.5) / n as f64;
         let c = footprint.point_at(t);
-        let Some((w, d)) = walls.nearest(c) else {
-            return;
+        let Some((w, d)) = walls_at(c).and_then(|walls| walls.nearest(c)) else {
+            continue;
         };
         if (d - r).abs() > WALL_SLACK {
             continue;
@@ -105,10 +116,10 @@ mod tests {
         let walls = square_walls();
         // 3 mm above the bottom wall (y = 0), tool radius 3: following it.
         let east = [feed((5.0, 3.0), (15.0, 3.0), -2.0)];
-        let s = material_sides(&east, &walls, -2.0, 3.0);
+        let s = material_sides(&east, &|_| Some(&walls), -2.0, 3.0);
         assert!((s.right - 10.0).abs() < 1e-9 && s.left == 0.0, "{s:?}");
         let west = [feed((15.0, 3.0), (5.0, 3.0), -2.0)];
-        let s = material_sides(&west, &walls, -2.0, 3.0);
+        let s = material_sides(&west, &|_| Some(&walls), -2.0, 3.0);
         assert!((s.left - 10.0).abs() < 1e-9 && s.right == 0.0, "{s:?}");
     }
 
@@ -119,13 +130,31 @@ mod tests {
             feed((5.0, 8.0), (15.0, 8.0), -2.0),
             feed((5.0, 3.0), (15.0, 3.0), -1.0),
         ];
-        assert_eq!(material_sides(&moves, &walls, -2.0, 3.0), Sides::default());
+        assert_eq!(
+            material_sides(&moves, &|_| Some(&walls), -2.0, 3.0),
+            Sides::default()
+        );
+    }
+
+    #[test]
+    fn only_the_walls_of_the_pocket_the_tool_is_in_count() {
+        let walls = square_walls();
+        // Along y = 3 the bottom wall is 3 away; a pocket elsewhere whose walls are not these
+        // (the tool is not in this one at x > 10) has nothing to say.
+        let moves = [feed((5.0, 3.0), (15.0, 3.0), -2.0)];
+        let s = material_sides(&moves, &|p| (p.x < 10.0).then_some(&walls), -2.0, 3.0);
+        assert!((s.right - 5.0).abs() < 1e-9 && s.left == 0.0, "{s:?}");
     }
 
     #[test]
     fn a_move_below_the_depth_counts() {
         let walls = square_walls();
-        let s = material_sides(&[feed((5.0, 3.0), (15.0, 3.0), -3.0)], &walls, -2.0, 3.0);
+        let s = material_sides(
+            &[feed((5.0, 3.0), (15.0, 3.0), -3.0)],
+            &|_| Some(&walls),
+            -2.0,
+            3.0,
+        );
         assert!((s.right - 10.0).abs() < 1e-9);
     }
 }
