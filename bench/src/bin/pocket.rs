@@ -92,7 +92,7 @@ fn main() {
                 .collect();
             let t2 = Instant::now();
             let jobs: Vec<_> = regions.iter().zip(&plans).collect();
-            let linked = pocketeer::link::link(&jobs, &link, tol);
+            let linked = pocketeer::link::link(&jobs, &link, tol).expect("bench parameters are in range");
             let t3 = Instant::now();
             let settings = ProgramSettings {
                 units: ProgramUnits::Millimetres,

@@ -4,7 +4,7 @@
 use crate::clear::{plan_region, ClearError, ClearParams, ClearPlan};
 use crate::geom::Pocket;
 use crate::geom::Tolerance;
-use crate::link::{link, LinkParams, Linked};
+use crate::link::{link, LinkError, LinkParams, Linked};
 use crate::offset::Region;
 use thiserror::Error;
 
@@ -15,8 +15,8 @@ pub enum JobError {
     #[error(transparent)]
     Clear(#[from] ClearError),
     /// A linking parameter is out of range.
-    #[error("{0}")]
-    BadParameter(String),
+    #[error(transparent)]
+    Link(#[from] LinkError),
     /// The tool fits in no pocket.
     #[error("a {diameter} mm tool fits {}: the widest place is {widest:.3} mm across",
         if *.pockets == 1 { "nowhere in the pocket".to_string() } else { format!("in none of the {} pockets", .pockets) })]
@@ -46,7 +46,7 @@ pub fn pocket_job(
     link_params: &LinkParams,
     tol: &Tolerance,
 ) -> Result<Job, JobError> {
-    check_link(link_params)?;
+    link_params.check()?;
     let regions: Vec<Region> = pockets.iter().map(Region::new).collect();
     let mut plans = Vec::with_capacity(pockets.len());
     for (p, r) in pockets.iter().zip(&regions) {
@@ -64,7 +64,7 @@ pub fn pocket_job(
         .zip(&plans)
         .filter(|(_, p)| !p.nodes.is_empty())
         .collect();
-    let mut linked = link(&jobs, link_params, tol);
+    let mut linked = link(&jobs, link_params, tol)?;
     for (i, p) in plans.iter().enumerate() {
         if p.nodes.is_empty() {
             linked.warnings.push(format!(
@@ -85,33 +85,4 @@ fn widest(pockets: &[Pocket], tol: &Tolerance) -> Result<f64, ClearError> {
         best = best.max(crate::offset::largest_inscribed_radius(p, tol).map_err(ClearError::from)?);
     }
     Ok(best)
-}
-
-fn check_link(p: &LinkParams) -> Result<(), JobError> {
-    let bad = |m: String| Err(JobError::BadParameter(m));
-    if !(p.depth.is_finite() && p.depth > 0.0) {
-        return bad(format!("the depth must be positive (got {} mm)", p.depth));
-    }
-    if !(p.step_down.is_finite() && p.step_down > 0.0) {
-        return bad(format!("the step-down must be positive (got {} mm)", p.step_down));
-    }
-    if p.depth / p.step_down > 10_000.0 {
-        return bad(format!(
-            "{} mm in steps of {} mm would take more than 10000 passes",
-            p.depth, p.step_down
-        ));
-    }
-    if !(p.safe_z.is_finite() && p.safe_z > 0.0) {
-        return bad(format!(
-            "the safe height must be above the stock (got {} mm)",
-            p.safe_z
-        ));
-    }
-    if !(p.ramp_angle > 0.0 && p.ramp_angle < std::f64::consts::FRAC_PI_2) {
-        return bad(format!(
-            "the ramp angle must be between 0 and 90 degrees (got {})",
-            p.ramp_angle.to_degrees()
-        ));
-    }
-    Ok(())
 }

@@ -71,6 +71,56 @@ pub struct LinkParams {
     pub ramp_angle: f64,
 }
 
+/// Why a tool path cannot be linked: a parameter out of range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LinkError {
+    /// The depth is not positive.
+    #[error("the depth must be positive (got {0} mm)")]
+    Depth(f64),
+    /// The step-down is not positive.
+    #[error("the step-down must be positive (got {0} mm)")]
+    StepDown(f64),
+    /// More passes than any job needs.
+    #[error("{depth} mm in steps of {step_down} mm would take more than 10000 passes")]
+    TooManyPasses {
+        /// The depth, mm.
+        depth: f64,
+        /// The step-down, mm.
+        step_down: f64,
+    },
+    /// The safe height is not above the stock.
+    #[error("the safe height must be above the stock (got {0} mm)")]
+    SafeZ(f64),
+    /// The ramp angle is not between 0 and 90 degrees.
+    #[error("the ramp angle must be between 0 and 90 degrees (got {0})")]
+    RampAngle(f64),
+}
+
+impl LinkParams {
+    /// Checks that every parameter is in range ([`link`] does it first).
+    pub fn check(&self) -> Result<(), LinkError> {
+        if !(self.depth.is_finite() && self.depth > 0.0) {
+            return Err(LinkError::Depth(self.depth));
+        }
+        if !(self.step_down.is_finite() && self.step_down > 0.0) {
+            return Err(LinkError::StepDown(self.step_down));
+        }
+        if self.depth / self.step_down > 10_000.0 {
+            return Err(LinkError::TooManyPasses {
+                depth: self.depth,
+                step_down: self.step_down,
+            });
+        }
+        if !(self.safe_z.is_finite() && self.safe_z > 0.0) {
+            return Err(LinkError::SafeZ(self.safe_z));
+        }
+        if !(self.ramp_angle > 0.0 && self.ramp_angle < std::f64::consts::FRAC_PI_2) {
+            return Err(LinkError::RampAngle(self.ramp_angle.to_degrees()));
+        }
+        Ok(())
+    }
+}
+
 /// A linked tool path and what the user should know about it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Linked {
@@ -92,8 +142,13 @@ pub fn pass_depths(depth: f64, step_down: f64) -> Vec<f64> {
 }
 
 /// Links the plans of several pockets (each with its prepared region) into one tool path,
-/// starting and ending at the safe height.
-pub fn link(jobs: &[(&Region, &ClearPlan)], params: &LinkParams, tol: &Tolerance) -> Linked {
+/// starting and ending at the safe height, its parameters checked first.
+pub fn link(
+    jobs: &[(&Region, &ClearPlan)],
+    params: &LinkParams,
+    tol: &Tolerance,
+) -> Result<Linked, LinkError> {
+    params.check()?;
     let start = Point3::new(0.0, 0.0, params.safe_z);
     let mut linker = Linker {
         params,
@@ -121,10 +176,10 @@ pub fn link(jobs: &[(&Region, &ClearPlan)], params: &LinkParams, tol: &Tolerance
             }
         }
     }
-    Linked {
+    Ok(Linked {
         toolpath: linker.path,
         warnings: linker.warnings,
-    }
+    })
 }
 
 struct Linker<'a> {

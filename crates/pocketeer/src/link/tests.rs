@@ -32,7 +32,7 @@ fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, Region) {
     };
     let plan = plan_pocket(pocket, &clear, &tol).unwrap();
     let region = Region::new(pocket);
-    let l = link(&[(&region, &plan)], &params(entry), &tol);
+    let l = link(&[(&region, &plan)], &params(entry), &tol).unwrap();
     (l, region)
 }
 
@@ -211,7 +211,7 @@ fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
             direction,
             ..params(Entry::Helix)
         };
-        let l = link(&[(&region, &plan)], &p, &tol);
+        let l = link(&[(&region, &plan)], &p, &tol).unwrap();
         let (right, left) = wall_sides(&l.toolpath, &pocket, -2.0);
         // Both loops at the walls: 2 (54 + 34) round the wall; round the island its sides
         // and a quarter circle of the tool's radius at each corner.
