@@ -10,8 +10,25 @@ use crate::union_find::UnionFind;
 /// Node ids, united where pieces meet.
 pub type Nodes = UnionFind;
 
-/// A cut: where on the piece (parameter), which node, and the point.
-type Cut = (f64, usize, Point);
+/// A cut on a piece.
+#[derive(Debug, Clone, Copy)]
+struct Cut {
+    /// Where on the piece, as its parameter.
+    t: f64,
+    /// The node the pieces on both sides of the cut share.
+    node: usize,
+    /// The point.
+    point: Point,
+}
+
+/// A piece's end nodes as united so far and its element (a joint's pieces count as their
+/// element's).
+#[derive(Debug, Clone, Copy)]
+struct Ends {
+    start: usize,
+    end: usize,
+    element: usize,
+}
 
 use crate::geom::TOUCH;
 
@@ -61,20 +78,20 @@ pub fn split(
             None
         }
     };
-    // Each piece's end nodes as united so far (dropped points join their neighbours) and its
-    // element (a joint's pieces count as their element's).
-    let ends: Vec<(usize, usize, usize)> = pieces
+    // Dropped points have joined their neighbours' nodes.
+    let ends: Vec<Ends> = pieces
         .iter()
-        .map(|p| {
-            let element = p.source as usize % elements.max(1);
-            (nodes.find(p.start), nodes.find(p.end), element)
+        .map(|p| Ends {
+            start: nodes.find(p.start),
+            end: nodes.find(p.end),
+            element: p.source as usize % elements.max(1),
         })
         .collect();
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
         // Joined end to start, or of one element or neighbouring ones: see `meetings`.
         let (a, b) = (ends[i], ends[j]);
-        let joined = a.1 == b.0 || b.1 == a.0;
-        let neighbours = a.2.abs_diff(b.2) <= 1;
+        let joined = a.end == b.start || b.end == a.start;
+        let neighbours = a.element.abs_diff(b.element) <= 1;
         let hits = meetings(
             &pieces[i].segment,
             &pieces[j].segment,
@@ -101,10 +118,24 @@ pub fn split(
                     (None, None) => nodes.add(),
                 };
                 if end_node(i, ta).is_none() {
-                    cuts.push((i, (ta, node, p)));
+                    cuts.push((
+                        i,
+                        Cut {
+                            t: ta,
+                            node,
+                            point: p,
+                        },
+                    ));
                 }
                 if end_node(j, tb).is_none() {
-                    cuts.push((j, (tb, node, p)));
+                    cuts.push((
+                        j,
+                        Cut {
+                            t: tb,
+                            node,
+                            point: p,
+                        },
+                    ));
                 }
             }
         }
@@ -182,7 +213,7 @@ fn meetings(
 
 /// The pieces cut at `cuts` ((piece, cut), in any order): two cuts at one place are one node.
 fn cut_at(pieces: &[Piece], mut cuts: Vec<(usize, Cut)>, nodes: &mut Nodes, near_end: f64) -> Vec<Piece> {
-    cuts.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1 .0.total_cmp(&b.1 .0)));
+    cuts.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.t.total_cmp(&b.1.t)));
     let mut out = Vec::with_capacity(pieces.len() + cuts.len());
     let mut next = 0;
     for (i, piece) in pieces.iter().enumerate() {
@@ -195,18 +226,27 @@ fn cut_at(pieces: &[Piece], mut cuts: Vec<(usize, Cut)>, nodes: &mut Nodes, near
             continue;
         }
         let s = &piece.segment;
-        let mut prev: Cut = (0.0, piece.start, s.start());
+        let mut prev = Cut {
+            t: 0.0,
+            node: piece.start,
+            point: s.start(),
+        };
+        let last = Cut {
+            t: 1.0,
+            node: piece.end,
+            point: s.end(),
+        };
         let at = cuts[first..next].iter().map(|c| c.1);
-        for cut in at.chain(std::iter::once((1.0, piece.end, s.end()))) {
-            if (cut.0 - prev.0) * s.length() <= near_end {
+        for cut in at.chain(std::iter::once(last)) {
+            if (cut.t - prev.t) * s.length() <= near_end {
                 // Two cuts at one place: one node.
-                nodes.union(prev.1, cut.1);
+                nodes.union(prev.node, cut.node);
                 continue;
             }
             out.push(Piece {
                 segment: between(s, prev, cut),
-                start: prev.1,
-                end: cut.1,
+                start: prev.node,
+                end: cut.node,
                 source: piece.source,
             });
             prev = cut;
@@ -218,7 +258,7 @@ fn cut_at(pieces: &[Piece], mut cuts: Vec<(usize, Cut)>, nodes: &mut Nodes, near
 /// The part of `s` between two cuts, a line ending exactly on the cut points.
 fn between(s: &Segment, a: Cut, b: Cut) -> Segment {
     match s {
-        Segment::Line(_) => Segment::Line(Line::new(a.2, b.2)),
-        Segment::Arc(_) => s.subsegment(a.0, b.0),
+        Segment::Line(_) => Segment::Line(Line::new(a.point, b.point)),
+        Segment::Arc(_) => s.subsegment(a.t, b.t),
     }
 }
