@@ -147,8 +147,7 @@ struct Gap<'a> {
 impl Gap<'_> {
     /// The pieces of `half` (a loop of the half level) that must be cut.
     fn needed(&self, half: &Contour) -> Vec<Path> {
-        // For every sub-piece, in loop order: (segment, t0, t1, needed).
-        let mut subs: Vec<(usize, f64, f64, bool)> = Vec::new();
+        let mut subs: Vec<SubPiece> = Vec::new();
         for (i, seg) in half.segments.iter().enumerate() {
             // Along an arc the normals fan out: a point u along the normal moves (1 + u/ρ)
             // times as fast as its foot.
@@ -162,7 +161,12 @@ impl Gap<'_> {
                 let t = 0.5 * (t0 + t1);
                 // The region is on the left of every loop; its inside is further from the walls.
                 let normal = seg.tangent_at(t).perp();
-                subs.push((i, t0, t1, !self.normal_clean(seg.point_at(t), normal)));
+                subs.push(SubPiece {
+                    segment: i,
+                    t0,
+                    t1,
+                    needed: !self.normal_clean(seg.point_at(t), normal),
+                });
             }
         }
         paths_of(half, &subs)
@@ -203,22 +207,40 @@ impl Gap<'_> {
     }
 }
 
-/// Joins the needed sub-pieces into paths along the loop (wrapping around its start).
-fn paths_of(half: &Contour, subs: &[(usize, f64, f64, bool)]) -> Vec<Path> {
-    if subs.iter().all(|s| s.3) {
+/// A stretch of one segment of a half-level loop, and whether it must be cut.
+#[derive(Debug, Clone, Copy)]
+struct SubPiece {
+    /// The segment of the loop.
+    segment: usize,
+    /// Where on it the stretch starts and ends, as parameters.
+    t0: f64,
+    t1: f64,
+    /// True when the tool must pass there to leave nothing.
+    needed: bool,
+}
+
+/// Joins the needed sub-pieces (in loop order) into paths along the loop (wrapping around its
+/// start).
+fn paths_of(half: &Contour, subs: &[SubPiece]) -> Vec<Path> {
+    if subs.iter().all(|s| s.needed) {
         return vec![Path {
             segments: half.segments.clone(),
             closed: true,
         }];
     }
     // Start right after a sub-piece that is not needed, so no path is cut by the wrap.
-    let Some(first_clean) = subs.iter().position(|s| !s.3) else {
+    let Some(first_clean) = subs.iter().position(|s| !s.needed) else {
         return Vec::new();
     };
     let mut paths = Vec::new();
     let mut current: Vec<(usize, f64, f64)> = Vec::new();
     for k in 1..=subs.len() {
-        let (i, t0, t1, needed) = subs[(first_clean + k) % subs.len()];
+        let SubPiece {
+            segment: i,
+            t0,
+            t1,
+            needed,
+        } = subs[(first_clean + k) % subs.len()];
         if needed {
             match current.last_mut() {
                 Some(last) if last.0 == i && last.2 == t0 => last.2 = t1,
