@@ -55,7 +55,7 @@ pub fn add_cleanups(
     // Each half level from the sources of the level just outside it.
     let half_loops = parallel(&half, |(d, k)| {
         region
-            .offset_after(d, tol, sources.get(k).map(|s| &**s))
+            .offset_with_sources(d, tol, sources.get(k).map(|s| &**s))
             .map(|l| l.0)
     })
     .into_iter()

@@ -194,7 +194,7 @@ impl SegmentIndex {
     /// True when some segment comes nearer to `p` than `r`: stops at the first one found, so it
     /// is cheaper than [`SegmentIndex::distance`] when the answer is yes.
     pub fn any_within(&self, p: Point, r: f64) -> bool {
-        self.any_within_after(p, r, &mut 0, &mut None)
+        self.any_within_hinted(p, r, &mut 0, &mut None)
     }
 
     /// [`SegmentIndex::any_within`] that measures first the segment `last` found and keeps
@@ -202,7 +202,7 @@ impl SegmentIndex {
     /// segment that answered the one before), adding to `work` one for the search and one for
     /// every segment it measured (those whose boxes come within `r`): near the middle of a
     /// round profile, with `r` close to its radius, that is most of them.
-    pub fn any_within_after(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
+    pub fn any_within_hinted(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
         *work += 1;
         if r.is_nan() || r <= 0.0 {
             return false;

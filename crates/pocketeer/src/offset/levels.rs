@@ -12,7 +12,7 @@ type Level = (Vec<Contour>, Arc<Sources>);
 
 /// The loops at each of `distances` in turn, up to (not including) the first empty level, with
 /// the sources of each level's loops. Each level is offset from the sources of the deepest
-/// level already done below it (see [`Region::offset_after`]). The first error met ends the
+/// level already done below it (see [`Region::offset_with_sources`]). The first error met ends the
 /// work on every core.
 pub fn offsets_until_empty(
     region: &Region,
@@ -50,7 +50,7 @@ pub fn offsets_until_empty(
             .lock()
             .ok()
             .and_then(|d| d.range(..k).next_back().map(|(_, (_, s))| Arc::clone(s)));
-        let (loops, sources) = match region.offset_after(distances[k], tol, smaller.as_deref()) {
+        let (loops, sources) = match region.offset_with_sources(distances[k], tol, smaller.as_deref()) {
             Ok(level) => level,
             Err(e) => {
                 fail(e);

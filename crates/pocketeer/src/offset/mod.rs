@@ -162,7 +162,7 @@ impl Region {
     /// material, clockwise around holes.
     pub fn offset(&self, d: f64, tol: &Tolerance) -> Result<Vec<Contour>, OffsetError> {
         if d >= 0.0 {
-            Ok(self.offset_after(d, tol, None)?.0)
+            Ok(self.offset_with_sources(d, tol, None)?.0)
         } else {
             // Growing the region is eroding everything else.
             Ok(erode(
@@ -194,12 +194,12 @@ impl Region {
     /// let l = Contour::polygon(&[p(0.0, 0.0), p(60.0, 0.0), p(60.0, 10.0), p(10.0, 10.0), p(10.0, 40.0), p(0.0, 40.0)]);
     /// let region = Region::new(&Pocket { boundary: l, islands: vec![] });
     /// let tol = Tolerance::default();
-    /// let (_, sources) = region.offset_after(1.0, &tol, None).unwrap();
-    /// let (fast, _) = region.offset_after(3.0, &tol, Some(&sources)).unwrap();
+    /// let (_, sources) = region.offset_with_sources(1.0, &tol, None).unwrap();
+    /// let (fast, _) = region.offset_with_sources(3.0, &tol, Some(&sources)).unwrap();
     /// let full = region.offset(3.0, &tol).unwrap();
     /// assert!((fast[0].signed_area() - full[0].signed_area()).abs() < 1e-9);
     /// ```
-    pub fn offset_after(
+    pub fn offset_with_sources(
         &self,
         d: f64,
         tol: &Tolerance,
@@ -219,7 +219,7 @@ impl Region {
 impl Region {
     /// The region eroded by each of `distances` (increasing, positive), computed on every
     /// core, up to the first distance where nothing is left; deeper levels offset only the
-    /// sources of a level already done (see [`Region::offset_after`]).
+    /// sources of a level already done (see [`Region::offset_with_sources`]).
     ///
     /// ```
     /// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};

@@ -37,9 +37,9 @@ impl Profile {
     }
 
     /// [`Profile::nearer_than`], adding to `work` the number of elements measured and trying
-    /// first the element that answered `last` (see [`SegmentIndex::any_within_after`]).
-    pub fn nearer_than_after(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
-        self.index.any_within_after(p, r, work, last)
+    /// first the element that answered `last` (see [`SegmentIndex::any_within_hinted`]).
+    pub fn nearer_than_hinted(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
+        self.index.any_within_hinted(p, r, work, last)
     }
 
     /// Distance from `p` to the profile.
@@ -98,7 +98,7 @@ pub fn prune(
                 && join_at(p).is_some_and(|element| {
                     let mid = p.segment.point_at(0.5);
                     let r = d - JOIN_SLACK.min(0.5 * d);
-                    profile.nearer_than_after(mid, r, &mut work, &mut Some(element))
+                    profile.nearer_than_hinted(mid, r, &mut work, &mut Some(element))
                 })
         })
         .collect();
@@ -129,7 +129,7 @@ pub fn prune(
             continue;
         }
         let m = pieces[i].segment.point_at(0.5);
-        *v = !profile.nearer_than_after(m, d - slack, &mut work, &mut last) && inside(m);
+        *v = !profile.nearer_than_hinted(m, d - slack, &mut work, &mut last) && inside(m);
         if work > MAX_MEASURES {
             return Err(m);
         }
