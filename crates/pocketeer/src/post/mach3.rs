@@ -16,6 +16,10 @@ impl Post for Mach3 {
     fn has_mist(&self) -> bool {
         true
     }
+    fn dwell_remark(&self) -> Option<&'static str> {
+        // Mach3's General Config decides whether G4 P is seconds or milliseconds.
+        Some("seconds: with G4 in milliseconds in Mach3's config, multiply by 1000")
+    }
     fn setup(&self) -> &'static [&'static str] {
         &["G90 G94 G17 G91.1", "G40 G49 G80"]
     }

@@ -62,7 +62,9 @@ pub struct ProgramSettings {
     /// Lines for the header comment (tool, stepover, statistics...).
     pub header: Vec<String>,
     /// Seconds to dwell after starting the spindle, so that it reaches its speed before the
-    /// first cut (G4 P, in seconds: LinuxCNC, GRBL 1.1 and Mach3's default); 0 writes none.
+    /// first cut (G4 P in seconds, as LinuxCNC and GRBL 1.1 read it; Mach3 reads P in seconds
+    /// or milliseconds by a setting of its own, which its programs' dwell line names); 0 writes
+    /// none.
     pub spindle_wait: f64,
     /// The tool to load before the spindle starts (`T n M6`; GRBL, which has no tool changer,
     /// gets the `T` word and a comment), or none.
@@ -158,6 +160,10 @@ trait Post {
     fn tool_change(&self, n: u32) -> Vec<String>;
     /// True when the controller takes M7 (mist coolant).
     fn has_mist(&self) -> bool;
+    /// A remark for the dwell line, where the controller's reading of G4 P is a setting.
+    fn dwell_remark(&self) -> Option<&'static str> {
+        None
+    }
     /// Modal setup after the units word.
     fn setup(&self) -> &'static [&'static str];
     /// The program end.
@@ -242,7 +248,11 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     }
     w.line(&format!("M3 S{}", fmt_rate(s.spindle)));
     if s.spindle_wait > 0.0 {
-        w.line(&format!("G4 P{}", fmt_rate(s.spindle_wait)));
+        let remark = post
+            .dwell_remark()
+            .map(|r| format!(" {}", post.comment(r)))
+            .unwrap_or_default();
+        w.line(&format!("G4 P{}{remark}", fmt_rate(s.spindle_wait)));
     }
     match s.coolant {
         Coolant::Off => {}

@@ -6,7 +6,7 @@ G0 Z5.0000
 T3 M6
 G43 H3
 M3 S16000
-G4 P2
+G4 P2 (seconds: with G4 in milliseconds in Mach3's config, multiply by 1000)
 M8
 G0 X4.6140 Y5.3238
 G0 Z1.0000
