@@ -78,8 +78,8 @@ pub fn overlapping_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
 /// several times cheaper than building an R-tree to walk it against itself.
 ///
 /// The sweep compares each box with those still open; when that would take more than
-/// `budget` comparisons, or when `f` returns `false`, it stops and returns `Err` with the
-/// number of comparisons made and the box it stopped at. The comparisons bound both the
+/// `budget` comparisons, or when `f` returns `false`, it stops and returns where ([`Stopped`]:
+/// the comparisons made and the box it stopped at). The comparisons bound both the
 /// sweep's time and the number of pairs.
 ///
 /// ```
@@ -101,7 +101,7 @@ pub fn for_each_overlapping_pair(
     boxes: &[Aabb],
     budget: u64,
     mut f: impl FnMut(usize, usize) -> bool,
-) -> Result<(), (u64, usize)> {
+) -> Result<(), Stopped> {
     let total = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
     let (sum_w, sum_h) = boxes
         .iter()
@@ -125,18 +125,27 @@ pub fn for_each_overlapping_pair(
     for (k, &(b, i)) in sorted.iter().enumerate() {
         tests += open.len() as u64;
         if tests > budget {
-            return Err((tests, i));
+            return Err(Stopped { tests, at: i });
         }
         open.retain(|&o| sorted[o].0[1] >= b[0]);
         for &o in &open {
             let (o, j) = sorted[o];
             if o[2] <= b[3] && b[2] <= o[3] && !f(i.min(j), i.max(j)) {
-                return Err((tests, i));
+                return Err(Stopped { tests, at: i });
             }
         }
         open.push(k);
     }
     Ok(())
+}
+
+/// Where [`for_each_overlapping_pair`] stopped, over its budget or told to by its callback.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Stopped {
+    /// The box comparisons made by then.
+    pub tests: u64,
+    /// The box being swept.
+    pub at: usize,
 }
 
 /// Segments indexed for distance queries: a best-first search through a [`PackedTree`]

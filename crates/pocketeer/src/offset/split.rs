@@ -141,7 +141,7 @@ pub fn split(
         }
         cuts.len() <= budget.1.saturating_mul(2)
     });
-    if let Err((tests, at)) = sweep {
+    if let Err(crate::geom::Stopped { tests, at }) = sweep {
         return Err(Overrun {
             tests,
             crossings: cuts.len() / 2,
