@@ -33,9 +33,31 @@ pub struct ClearParams {
 /// Why a pocket cannot be planned.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ClearError {
-    /// A parameter out of range.
-    #[error("{0}")]
-    BadParameter(String),
+    /// The tool diameter is not positive.
+    #[error("the tool diameter must be positive (got {0} mm)")]
+    ToolDiameter(f64),
+    /// The stepover is not positive.
+    #[error("the stepover must be positive (got {0} mm)")]
+    Stepover(f64),
+    /// The stepover is not less than the tool diameter.
+    #[error("the stepover ({stepover} mm) must be less than the tool diameter ({diameter} mm)")]
+    StepoverTooLarge {
+        /// The stepover, mm.
+        stepover: f64,
+        /// The tool diameter, mm.
+        diameter: f64,
+    },
+    /// The allowance is negative or not a number.
+    #[error("the allowance must be zero or positive (got {0} mm)")]
+    Allowance(f64),
+    /// The allowance is not less than the tool diameter.
+    #[error("the allowance ({allowance} mm) must be less than the tool diameter ({diameter} mm)")]
+    AllowanceTooLarge {
+        /// The allowance, mm.
+        allowance: f64,
+        /// The tool diameter, mm.
+        diameter: f64,
+    },
     /// Too many levels would be needed.
     #[error("{levels} levels would be needed (stepover {stepover} mm over a pocket {depth:.3} mm deep); the limit is {limit}")]
     TooManyLevels {
@@ -160,35 +182,27 @@ pub fn plan_region(
 }
 
 fn check_params(p: &ClearParams) -> Result<(), ClearError> {
-    let bad = |m: String| Err(ClearError::BadParameter(m));
+    let diameter = 2.0 * p.tool_radius;
     if !(p.tool_radius.is_finite() && p.tool_radius > 0.0) {
-        return bad(format!(
-            "the tool diameter must be positive (got {} mm)",
-            2.0 * p.tool_radius
-        ));
+        return Err(ClearError::ToolDiameter(diameter));
     }
     if !(p.stepover.is_finite() && p.stepover > 0.0) {
-        return bad(format!("the stepover must be positive (got {} mm)", p.stepover));
+        return Err(ClearError::Stepover(p.stepover));
     }
-    if p.stepover >= 2.0 * p.tool_radius {
-        return bad(format!(
-            "the stepover ({} mm) must be less than the tool diameter ({} mm)",
-            p.stepover,
-            2.0 * p.tool_radius
-        ));
+    if p.stepover >= diameter {
+        return Err(ClearError::StepoverTooLarge {
+            stepover: p.stepover,
+            diameter,
+        });
     }
     if !(p.allowance.is_finite() && p.allowance >= 0.0) {
-        return bad(format!(
-            "the allowance must be zero or positive (got {} mm)",
-            p.allowance
-        ));
+        return Err(ClearError::Allowance(p.allowance));
     }
-    if p.allowance >= 2.0 * p.tool_radius {
-        return bad(format!(
-            "the allowance ({} mm) must be less than the tool diameter ({} mm)",
-            p.allowance,
-            2.0 * p.tool_radius
-        ));
+    if p.allowance >= diameter {
+        return Err(ClearError::AllowanceTooLarge {
+            allowance: p.allowance,
+            diameter,
+        });
     }
     Ok(())
 }
