@@ -516,7 +516,7 @@ fn paper_space_is_ignored_and_layers_filter() {
 #[test]
 fn refusals_name_what_is_wrong() {
     let empty = Drawing::new(vec![]);
-    assert!(matches!(read_err(&empty), ImportError::Empty(_)));
+    assert!(matches!(read_err(&empty), ImportError::EmptyModelSpace));
     let text_only = Drawing::new(vec![Entity::new("TEXT", "0").g(10, 0).g(20, 0).g(1, "hello")]);
     assert!(read_err(&text_only).to_string().contains("1 TEXT"));
     let nan = Drawing::new(vec![line("walls", 0.0, 0.0, f64::NAN, 1.0).g(5, "2A")]);

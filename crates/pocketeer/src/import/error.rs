@@ -65,6 +65,12 @@ pub fn fmt_count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// `3 TEXT, 1 HATCH`.
+fn fmt_kinds(kinds: &std::collections::BTreeMap<String, usize>) -> String {
+    let listed: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    listed.join(", ")
+}
+
 /// `a to b, c to d` for the ends listed, and how many chains more there are.
 fn free_ends(ends: &[(Point, Point)], open: usize) -> String {
     let listed: Vec<String> = ends.iter().map(|(a, b)| format!("{a} to {b}")).collect();
@@ -124,9 +130,21 @@ pub enum ImportError {
         /// The INSERT being expanded.
         pos: Pos,
     },
-    /// Nothing drawn in model space (after the layer filter).
-    #[error("{0}")]
-    Empty(String),
+    /// Model space holds nothing.
+    #[error("model space is empty: the drawing has nothing to pocket")]
+    EmptyModelSpace,
+    /// Nothing on the layers selected draws an outline.
+    #[error("no lines, arcs, circles, polylines, splines or ellipses on the selected layers (layers: {})", .layers.join(", "))]
+    NothingOnLayers {
+        /// Every layer of the drawing.
+        layers: Vec<String>,
+    },
+    /// Model space holds entities, none of which draws an outline.
+    #[error("model space holds {} but no lines, arcs, circles, polylines, splines or ellipses", fmt_kinds(.kinds))]
+    NoOutline {
+        /// How many entities of each kind there are.
+        kinds: std::collections::BTreeMap<String, usize>,
+    },
     /// No closed contour could be formed: the open chains, and the free ends of the first few.
     #[error("no closed contour: {}, free ends {}", fmt_count(*.open, "open chain", "open chains"), free_ends(.ends, *.open))]
     NoClosedContour {

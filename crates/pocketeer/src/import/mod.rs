@@ -116,9 +116,7 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
         *entity_counts.entry(e.kind.clone()).or_insert(0) += 1;
     }
     if model.is_empty() {
-        return Err(ImportError::Empty(
-            "model space is empty: the drawing has nothing to pocket".into(),
-        ));
+        return Err(ImportError::EmptyModelSpace);
     }
 
     let mut expander = expand::Expander::new(&doc);
@@ -241,17 +239,13 @@ fn nothing_to_pocket(
     layers: &[String],
     entity_counts: &BTreeMap<String, usize>,
 ) -> ImportError {
-    let what = if options.layers.is_some() {
-        format!(
-            "no lines, arcs, circles, polylines, splines or ellipses on the selected layers (layers: {})",
-            layers.join(", ")
-        )
+    if options.layers.is_some() {
+        ImportError::NothingOnLayers {
+            layers: layers.to_vec(),
+        }
     } else {
-        let kinds: Vec<String> = entity_counts.iter().map(|(k, n)| format!("{n} {k}")).collect();
-        format!(
-            "model space holds {} but no lines, arcs, circles, polylines, splines or ellipses",
-            kinds.join(", ")
-        )
-    };
-    ImportError::Empty(what)
+        ImportError::NoOutline {
+            kinds: entity_counts.clone(),
+        }
+    }
 }
