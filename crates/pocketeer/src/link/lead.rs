@@ -29,7 +29,7 @@ pub fn leads(
     let side = |t: crate::geom::Vector| if left { t.perp() } else { -t.perp() };
     let sign = if left { 1.0 } else { -1.0 };
     let r = params.tool_radius;
-    let slack = 1e-6 * d.max(1.0) + tol.rounding();
+    let slack = super::clearance_slack(d, tol);
     let fits = |s: &Segment| !region.segment_nearer_than(s, d - slack, tol);
     let mut rho = allowance.max(0.5 * r).min(r);
     for _ in 0..4 {

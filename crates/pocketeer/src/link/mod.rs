@@ -287,7 +287,7 @@ impl<'a> Linker<'a> {
     /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from
     /// every wall and island.
     fn stays_inside(&self, a: Point, b: Point, d: f64) -> bool {
-        let slack = 1e-6 * d.max(1.0) + self.tol.rounding();
+        let slack = clearance_slack(d, self.tol);
         a.distance(b) <= slack
             || !self.region().segment_nearer_than(
                 &Segment::Line(crate::geom::Line::new(a, b)),
@@ -436,6 +436,12 @@ impl<'a> Linker<'a> {
         self.descend_to_floor(q);
         self.path.line(Point3::at(q, self.z), Feed::Plunge);
     }
+}
+
+/// How far a move may come inside `d` of the walls and still count as keeping `d`: the loops
+/// are at `d` only up to the offset's accuracy and rounding.
+fn clearance_slack(d: f64, tol: &Tolerance) -> f64 {
+    1e-6 * d.max(1.0) + tol.rounding()
 }
 
 fn loop_path(segments: &[Segment]) -> Path {

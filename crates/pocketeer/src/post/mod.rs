@@ -254,13 +254,18 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
             .unwrap_or_default();
         w.line(&format!("G4 P{}{remark}", fmt_rate(s.spindle_wait)));
     }
-    match s.coolant {
-        Coolant::Off => {}
-        Coolant::Flood => w.line("M8"),
-        Coolant::Mist if post.has_mist() => w.line("M7"),
-        Coolant::Mist => {
+    // The word that switches the coolant on, where the controller has one: M9 ends it.
+    let coolant_on = match s.coolant {
+        Coolant::Off => None,
+        Coolant::Flood => Some("M8"),
+        Coolant::Mist => post.has_mist().then_some("M7"),
+    };
+    match coolant_on {
+        Some(word) => w.line(word),
+        None if s.coolant == Coolant::Mist => {
             w.line(&post.comment("mist coolant asked for: this controller has no M7, switch it on by hand"))
         }
+        None => {}
     }
     let mut from = path.start;
     for m in &path.moves {
@@ -287,7 +292,7 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
         w.motion("G0", Point3::new(p.x, p.y, s.safe_z), None, "");
     }
     w.line("M5");
-    if s.coolant != Coolant::Off && (s.coolant != Coolant::Mist || post.has_mist()) {
+    if coolant_on.is_some() {
         w.line("M9");
     }
     if let Some(park) = s.park {

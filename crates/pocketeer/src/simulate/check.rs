@@ -270,11 +270,12 @@ impl Walls {
     ) -> Option<(usize, f64, Point)> {
         let mid = seg.point_at(0.5);
         let n = self.regions.len();
-        let i = (0..n).find(|&i| self.regions[i].contains(mid)).or_else(|| {
+        let inside = (0..n).find(|&i| self.regions[i].contains(mid));
+        let i = inside.or_else(|| {
             (0..n).min_by(|&a, &b| self.each[a].distance(mid).total_cmp(&self.each[b].distance(mid)))
         })?;
         let (region, walls) = (&self.regions[i], &self.each[i]);
-        let g = if region.contains(mid) {
+        let g = if inside.is_some() {
             walls
                 .nearest_to_segment(seg, r + gouge_tolerance.max(0.0) + 1.0, tol.eps)
                 .map(|(d, at)| (r - d, at))
