@@ -3,8 +3,8 @@
 pub mod cases;
 
 use cases::{Case, Ring};
-use pocketeer::geom::{Arc, Contour, Line, Point, Segment};
 use pocketeer::geom::Pocket;
+use pocketeer::geom::{Arc, Contour, Line, Point, Segment};
 
 /// A bulged polyline as exact lines and arcs.
 pub fn contour(ring: &Ring) -> Contour {

@@ -107,7 +107,7 @@ fn main() {
         let p = pocket(case);
         let tol = Tolerance::for_extent(&p.boundary.bbox(), 0.001);
         // Both sides index their input once, outside the timing, as cavalier's Shape does.
-        let region = pocketeer::offset::Region::new(&p);
+        let region = pocketeer::geom::PreparedPocket::new(&p);
         let s = shape(case);
         let opts = ShapeOffsetOptions::default();
         // Ours: all levels in one call, on both cores, deeper levels from the sources of

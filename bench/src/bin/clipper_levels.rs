@@ -17,7 +17,7 @@ fn main() {
     let case = cases::smooth(n, arcs);
     let pocket = pocketeer_bench::pocket(&case);
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
-    let region = pocketeer::offset::Region::new(&pocket);
+    let region = pocketeer::geom::PreparedPocket::new(&pocket);
     let paths = flattened(&case);
     let vertices: usize = paths.iter().map(|p| p.len()).sum();
     println!("{}: {vertices} flattened vertices", case.name);

@@ -1,5 +1,5 @@
 //! How pocketeer's offset time grows with the number of elements: all 46 levels of the smooth
-//! profile (case (c)) with `Region::offset_levels`, at 1k, 10k and 100k elements, lines and
+//! profile (case (c)) with `PreparedPocket::offset_levels`, at 1k, 10k and 100k elements, lines and
 //! arcs, the sizes taken in turn in every round so that the machine's drift hits them alike.
 //! Prints medians and the growth per tenfold: `cargo run --release --bin growth [-- ROUNDS]`.
 
@@ -17,7 +17,7 @@ fn main() {
                 let case = cases::smooth(n, arcs);
                 let pocket = pocketeer_bench::pocket(&case);
                 let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
-                (case.distances, pocketeer::offset::Region::new(&pocket), tol)
+                (case.distances, pocketeer::geom::PreparedPocket::new(&pocket), tol)
             })
             .collect();
         let mut times = vec![Vec::new(); sizes.len()];

@@ -81,14 +81,11 @@ fn main() {
             };
             let tol = &analysis.tolerance;
             let pockets = &analysis.regions.pockets;
-            let regions: Vec<pocketeer::offset::Region> =
-                pockets.iter().map(pocketeer::offset::Region::new).collect();
-            let plans: Vec<_> = pockets
+            let regions: Vec<pocketeer::geom::PreparedPocket> =
+                pockets.iter().map(pocketeer::geom::PreparedPocket::new).collect();
+            let plans: Vec<_> = regions
                 .iter()
-                .zip(&regions)
-                .map(|(p, r)| {
-                    pocketeer::clear::plan_region(r, &p.boundary.bbox(), &clear, tol).expect("plans")
-                })
+                .map(|r| pocketeer::clear::plan_prepared(r, &clear, tol).expect("plans"))
                 .collect();
             let t2 = Instant::now();
             let jobs: Vec<_> = regions.iter().zip(&plans).collect();

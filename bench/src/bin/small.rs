@@ -13,7 +13,7 @@ fn main() {
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2000);
     let pocket = pocketeer_bench::pocket(&case);
     let tol = Tolerance::for_extent(&pocket.boundary.bbox(), 0.001);
-    let region = pocketeer::offset::Region::new(&pocket);
+    let region = pocketeer::geom::PreparedPocket::new(&pocket);
     let mut total = 0.0;
     for _ in 0..n {
         total += region

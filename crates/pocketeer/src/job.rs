@@ -1,11 +1,11 @@
 //! The whole pocketing job on a drawing's pockets: plan every pocket, link them into one tool
 //! path.
 
-use crate::clear::{plan_region, ClearError, ClearParams, ClearPlan};
+use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
 use crate::geom::Pocket;
+use crate::geom::PreparedPocket;
 use crate::geom::Tolerance;
 use crate::link::{link, LinkError, LinkParams, Linked};
-use crate::offset::Region;
 use thiserror::Error;
 
 /// Why a job cannot be planned.
@@ -47,11 +47,11 @@ pub fn pocket_job(
     tol: &Tolerance,
 ) -> Result<Job, JobError> {
     link_params.check()?;
-    let regions: Vec<Region> = pockets.iter().map(Region::new).collect();
-    let mut plans = Vec::with_capacity(pockets.len());
-    for (p, r) in pockets.iter().zip(&regions) {
-        plans.push(plan_region(r, &p.boundary.bbox(), clear, tol)?);
-    }
+    let prepared: Vec<PreparedPocket> = pockets.iter().map(PreparedPocket::new).collect();
+    let plans = prepared
+        .iter()
+        .map(|p| plan_prepared(p, clear, tol))
+        .collect::<Result<Vec<_>, _>>()?;
     if !pockets.is_empty() && plans.iter().all(|p| p.nodes.is_empty()) {
         return Err(JobError::ToolFitsNowhere {
             diameter: 2.0 * clear.tool_radius,
@@ -59,7 +59,7 @@ pub fn pocket_job(
             widest: 2.0 * widest(pockets, tol)?,
         });
     }
-    let jobs: Vec<(&Region, &ClearPlan)> = regions
+    let jobs: Vec<(&PreparedPocket, &ClearPlan)> = prepared
         .iter()
         .zip(&plans)
         .filter(|(_, p)| !p.nodes.is_empty())

@@ -7,7 +7,7 @@
 //! ```text
 //! DXF bytes
 //!   └─ import::analyze       read, join end points, nest      → Analysis { regions.pockets: Vec<geom::Pocket> }
-//!      └─ clear::plan_region  levels r + allowance + k·stepover → ClearPlan (a tree of loops, clean-up paths)
+//!      └─ clear::plan_prepared levels r + allowance + k·stepover → ClearPlan (a tree of loops, clean-up paths)
 //!         │   (offset: the paper's raw offset → split → prune → stitch, exact lines and arcs)
 //!         └─ link::link        order, entries, links, passes    → Linked { toolpath: Toolpath }
 //!            ├─ post::write_gcode    GRBL, LinuxCNC, Mach3      → G-code text

@@ -163,7 +163,7 @@ fn feed_moves_before_any_feed_rate_and_plunges_are_reported() {
 fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> String {
     use pocketeer::toolpath::{Feed, Point3, Toolpath};
     let tol = Tolerance::default();
-    let region = pocketeer::offset::Region::new(pocket);
+    let region = pocketeer::geom::PreparedPocket::new(pocket);
     let distances: Vec<f64> = (0..200).map(|k| r + k as f64 * stepover).collect();
     let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
     for level in region.offset_levels(&distances, &tol).unwrap().iter().rev() {

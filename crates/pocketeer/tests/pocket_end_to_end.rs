@@ -8,9 +8,10 @@ use common::replay::{measure, read, Target};
 use common::shapes::{circle_cw, pocket_strategy, rect, star};
 use pocketeer::clear::ClearParams;
 use pocketeer::geom::Pocket;
+use pocketeer::geom::PreparedPocket;
 use pocketeer::geom::{Segment, Tolerance};
 use pocketeer::link::{Direction, Entry, LinkParams};
-use pocketeer::offset::{offset_pocket, Region};
+use pocketeer::offset::offset_pocket;
 use pocketeer::post::Dialect;
 
 struct Outcome {
@@ -35,7 +36,7 @@ fn run(
     let (program, warnings) =
         common::program::our_program(pockets, diameter, stepover, depth, entry, dialect);
     let moves = read(&program).expect("the program reads back");
-    let prepared: Vec<(Region, Vec<Segment>, Vec<Segment>)> = pockets
+    let prepared: Vec<(PreparedPocket, Vec<Segment>, Vec<Segment>)> = pockets
         .iter()
         .map(|p| {
             let walls = p.contours().flat_map(|c| c.segments.iter().copied()).collect();
@@ -44,7 +45,7 @@ fn run(
                 .iter()
                 .flat_map(|c| c.segments.iter().copied())
                 .collect();
-            (Region::new(p), walls, centres)
+            (PreparedPocket::new(p), walls, centres)
         })
         .collect();
     let targets: Vec<Target> = prepared

@@ -14,8 +14,8 @@ mod residue;
 mod tree;
 
 use crate::geom::Pocket;
-use crate::geom::{Aabb, Contour, Segment, Tolerance};
-use crate::offset::Region;
+use crate::geom::PreparedPocket;
+use crate::geom::{Contour, Segment, Tolerance};
 use thiserror::Error;
 
 /// How a pocket is cleared.
@@ -157,27 +157,27 @@ impl ClearPlan {
 /// assert_eq!(plan.roots.len(), 1);
 /// ```
 pub fn plan_pocket(pocket: &Pocket, params: &ClearParams, tol: &Tolerance) -> Result<ClearPlan, ClearError> {
-    plan_region(&Region::new(pocket), &pocket.boundary.bbox(), params, tol)
+    plan_prepared(&PreparedPocket::new(pocket), params, tol)
 }
 
-/// [`plan_pocket`] for a pocket already prepared as a [`Region`], `bbox` its boundary's box.
-pub fn plan_region(
-    region: &Region,
-    bbox: &Aabb,
+/// [`plan_pocket`] for a pocket already prepared as a [`PreparedPocket`].
+pub fn plan_prepared(
+    pocket: &PreparedPocket,
     params: &ClearParams,
     tol: &Tolerance,
 ) -> Result<ClearPlan, ClearError> {
+    let bbox = pocket.bbox();
     check_params(params)?;
     // No point of the pocket is farther from its boundary than half its smaller extent.
     let depth = 0.5 * bbox.width().min(bbox.height());
     let distances = levels::level_distances(params, depth)?;
-    let (loops, sources): (Vec<_>, Vec<_>) = crate::offset::offsets_until_empty(region, &distances, tol)?
+    let (loops, sources): (Vec<_>, Vec<_>) = crate::offset::offsets_until_empty(pocket, &distances, tol)?
         .into_iter()
         .unzip();
     let distances = distances[..loops.len()].to_vec();
     let mut plan = tree::build(loops, &distances);
     plan.allowance = params.allowance;
-    residue::add_cleanups(&mut plan, region, &sources, params, tol)?;
+    residue::add_cleanups(&mut plan, pocket, &sources, params, tol)?;
     Ok(plan)
 }
 

@@ -15,14 +15,15 @@
 
 use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
+use crate::geom::PreparedPocket;
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance, Vector};
-use crate::offset::{OffsetError, Region, Sources};
+use crate::offset::{OffsetError, Sources};
 use std::sync::Arc;
 
 /// Adds to each part of `plan` the clean-up paths for the gap below it.
 pub fn add_cleanups(
     plan: &mut ClearPlan,
-    region: &Region,
+    pocket: &PreparedPocket,
     sources: &[Arc<Sources>],
     params: &ClearParams,
     tol: &Tolerance,
@@ -54,7 +55,7 @@ pub fn add_cleanups(
         .collect();
     // Each half level from the sources of the level just outside it.
     let half_loops = parallel(&half, |(d, k)| {
-        region
+        pocket
             .offset_with_sources(d, tol, sources.get(k).map(|s| &**s))
             .map(|l| l.0)
     })
@@ -75,7 +76,7 @@ pub fn add_cleanups(
             continue;
         }
         let gap = Gap {
-            region,
+            pocket,
             here: SegmentIndex::new(&loops_of(k)),
             below: SegmentIndex::new(&loops_of(k + 1)),
             next_distance: nominal(k),
@@ -130,7 +131,7 @@ fn parallel<T: Send>(inputs: &[(f64, usize)], f: impl Fn((f64, usize)) -> T + Sy
 
 /// One gap between two levels, ready for coverage tests.
 struct Gap<'a> {
-    region: &'a Region,
+    pocket: &'a PreparedPocket,
     /// Loops of level k.
     here: SegmentIndex,
     /// Loops of level k + 1 (empty for the last level).
@@ -159,7 +160,7 @@ impl Gap<'_> {
             for j in 0..n {
                 let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
                 let t = 0.5 * (t0 + t1);
-                // The region is on the left of every loop; its inside is further from the walls.
+                // The pocket is on the left of every loop; its inside is further from the walls.
                 let normal = seg.tangent_at(t).perp();
                 subs.push(SubPiece {
                     segment: i,
@@ -177,7 +178,7 @@ impl Gap<'_> {
     fn margin(&self, p: Point) -> f64 {
         let by_here = self.radius - self.here.distance(p);
         let by_below = self.radius - self.below.distance(p);
-        let inside_below = self.region.distance(p) - self.next_distance;
+        let inside_below = self.pocket.distance(p) - self.next_distance;
         by_here.max(by_below).max(inside_below)
     }
 

@@ -2,8 +2,8 @@
 //! path, else (with a warning) a straight plunge.
 
 use super::walk::{emit, length};
+use crate::geom::PreparedPocket;
 use crate::geom::{Point, Segment, Vector};
-use crate::offset::Region;
 use crate::toolpath::{Feed, Point3, Toolpath};
 use std::f64::consts::TAU;
 
@@ -23,7 +23,7 @@ pub struct Helix {
 /// normals into the part.
 #[allow(clippy::too_many_arguments)]
 pub fn find_helix(
-    region: &Region,
+    pocket: &PreparedPocket,
     outer: &crate::geom::Contour,
     samples: &[(Point, Vector)],
     part_distance: f64,
@@ -45,7 +45,7 @@ pub fn find_helix(
         .chain(std::iter::once(b.min.midpoint(b.max)));
     let mut best: Option<(Helix, f64)> = None;
     for c in candidates {
-        let clearance = region.distance(c);
+        let clearance = pocket.distance(c);
         // A little less than the room there, for rounding.
         let radius = ((clearance - tool_radius) * (1.0 - 1e-6)).min(preferred);
         // The largest radius first, then the shortest way to the target.
@@ -54,7 +54,7 @@ pub fn find_helix(
             continue;
         }
         // The containment tests last: the one on the part's outer loop is linear in its size.
-        if !region.contains(c) || !outer.contains(c) {
+        if !pocket.contains(c) || !outer.contains(c) {
             continue;
         }
         best = Some((Helix { center: c, radius }, score));

@@ -2,12 +2,12 @@
 //! leaves it the same way, never straight into it.
 
 use super::{Direction, LinkParams};
+use crate::geom::PreparedPocket;
 use crate::geom::{Arc, Segment, Tolerance};
-use crate::offset::Region;
 use std::f64::consts::FRAC_PI_2;
 
 /// Tangent arcs onto and off the finishing loop `segments` (closed, at `d` from the walls of
-/// `region`, with `allowance` left on the walls by the roughing). Each is a quarter circle on
+/// `pocket`, with `allowance` left on the walls by the roughing). Each is a quarter circle on
 /// the loop's free side (away from the wall), of a radius that starts the lead-in where the
 /// roughing has already cut (the allowance away, at least half the tool's radius, at most its
 /// radius), halved while an arc would come nearer than `d` to a wall; `None` when none fits.
@@ -15,7 +15,7 @@ pub fn leads(
     segments: &[Segment],
     d: f64,
     allowance: f64,
-    region: &Region,
+    pocket: &PreparedPocket,
     params: &LinkParams,
     tol: &Tolerance,
 ) -> Option<(Segment, Segment)> {
@@ -30,7 +30,7 @@ pub fn leads(
     let sign = if left { 1.0 } else { -1.0 };
     let r = params.tool_radius;
     let slack = super::clearance_slack(d, tol);
-    let fits = |s: &Segment| !region.segment_nearer_than(s, d - slack, tol);
+    let fits = |s: &Segment| !pocket.segment_nearer_than(s, d - slack, tol);
     let mut rho = allowance.max(0.5 * r).min(r);
     for _ in 0..4 {
         let c_in = q_in + side(t_in) * rho;

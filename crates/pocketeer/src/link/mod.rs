@@ -16,8 +16,8 @@ mod walk;
 pub use entry::Helix;
 
 use crate::clear::{ClearPlan, Node, Path};
+use crate::geom::PreparedPocket;
 use crate::geom::{Point, Segment, Tolerance};
-use crate::offset::Region;
 use crate::toolpath::{Feed, Point3, Toolpath};
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
@@ -141,10 +141,10 @@ pub fn pass_depths(depth: f64, step_down: f64) -> Vec<f64> {
     (1..=n).map(|k| -depth * k as f64 / n as f64).collect()
 }
 
-/// Links the plans of several pockets (each with its prepared region) into one tool path,
+/// Links the plans of several pockets (each with its prepared pocket) into one tool path,
 /// starting and ending at the safe height, its parameters checked first.
 pub fn link(
-    jobs: &[(&Region, &ClearPlan)],
+    jobs: &[(&PreparedPocket, &ClearPlan)],
     params: &LinkParams,
     tol: &Tolerance,
 ) -> Result<Linked, LinkError> {
@@ -155,15 +155,15 @@ pub fn link(
         tol,
         path: Toolpath::new(start),
         warnings: Vec::new(),
-        region: jobs.first().map(|j| j.0),
+        pocket: jobs.first().map(|j| j.0),
         plan: None,
         z: 0.0,
         z_top: 0.0,
         down: false,
     };
     let passes = pass_depths(params.depth, params.step_down);
-    for (region, plan) in jobs {
-        linker.region = Some(region);
+    for (pocket, plan) in jobs {
+        linker.pocket = Some(pocket);
         linker.plan = Some(plan);
         for &root in &plan.roots {
             let mut z_top = 0.0;
@@ -187,7 +187,7 @@ struct Linker<'a> {
     tol: &'a Tolerance,
     path: Toolpath,
     warnings: Vec<String>,
-    region: Option<&'a Region>,
+    pocket: Option<&'a PreparedPocket>,
     plan: Option<&'a ClearPlan>,
     /// Depth of the current pass.
     z: f64,
@@ -203,9 +203,9 @@ impl<'a> Linker<'a> {
             .unwrap_or_else(|| unreachable!("a plan is set before cutting"))
     }
 
-    fn region(&self) -> &'a Region {
-        self.region
-            .unwrap_or_else(|| unreachable!("a region is set before cutting"))
+    fn pocket(&self) -> &'a PreparedPocket {
+        self.pocket
+            .unwrap_or_else(|| unreachable!("a pocket is set before cutting"))
     }
 
     fn here(&self) -> Point {
@@ -262,9 +262,9 @@ impl<'a> Linker<'a> {
         let reverse = self.params.direction == Direction::Conventional;
         let mut segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
         if item.closed && node.level == 0 && self.plan().allowance > 0.0 {
-            let (region, allowance) = (self.region(), self.plan().allowance);
+            let (pocket, allowance) = (self.pocket(), self.plan().allowance);
             if let Some((lead_in, lead_out)) =
-                lead::leads(&segments, node.distance, allowance, region, self.params, self.tol)
+                lead::leads(&segments, node.distance, allowance, pocket, self.params, self.tol)
             {
                 segments.insert(0, lead_in);
                 segments.push(lead_out);
@@ -289,7 +289,7 @@ impl<'a> Linker<'a> {
     fn stays_inside(&self, a: Point, b: Point, d: f64) -> bool {
         let slack = clearance_slack(d, self.tol);
         a.distance(b) <= slack
-            || !self.region().segment_nearer_than(
+            || !self.pocket().segment_nearer_than(
                 &Segment::Line(crate::geom::Line::new(a, b)),
                 d - slack,
                 self.tol,
@@ -355,7 +355,7 @@ impl<'a> Linker<'a> {
     }
 
     /// A helix in the part `node` near the start of `segments`; when the part is too small,
-    /// in the part around it, and so on outwards (still inside the region: no gouge).
+    /// in the part around it, and so on outwards (still inside the pocket: no gouge).
     fn find_helix(&self, node: &Node, segments: &[Segment]) -> Option<Helix> {
         let p = self.params;
         let q = segments[0].start();
@@ -374,7 +374,7 @@ impl<'a> Linker<'a> {
                 samples.extend(entry::samples(&c.segments, 0.5 * p.tool_radius));
             }
             let found = entry::find_helix(
-                self.region(),
+                self.pocket(),
                 &n.outer,
                 &samples,
                 n.distance,

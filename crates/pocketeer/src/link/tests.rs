@@ -23,7 +23,7 @@ fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
     Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
 }
 
-fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, Region) {
+fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, PreparedPocket) {
     let tol = Tolerance::default();
     let clear = ClearParams {
         tool_radius: 3.0,
@@ -31,14 +31,14 @@ fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, Region) {
         allowance: 0.0,
     };
     let plan = plan_pocket(pocket, &clear, &tol).unwrap();
-    let region = Region::new(pocket);
-    let l = link(&[(&region, &plan)], &params(entry), &tol).unwrap();
-    (l, region)
+    let prepared = PreparedPocket::new(pocket);
+    let l = link(&[(&prepared, &plan)], &params(entry), &tol).unwrap();
+    (l, prepared)
 }
 
 /// Every feed move below the stock top keeps the tool centre at least the radius from the
 /// walls (lines exactly, arcs by dense samples).
-fn assert_no_gouge(path: &Toolpath, region: &Region) {
+fn assert_no_gouge(path: &Toolpath, prepared: &PreparedPocket) {
     let tol = Tolerance::default();
     let mut at = path.start;
     for m in &path.moves {
@@ -47,7 +47,7 @@ fn assert_no_gouge(path: &Toolpath, region: &Region) {
             Move::Line { to, .. } if below => {
                 let s = Segment::Line(crate::geom::Line::new(at.xy(), to.xy()));
                 assert!(
-                    !region.segment_nearer_than(&s, 3.0 - 1e-6, &tol),
+                    !prepared.segment_nearer_than(&s, 3.0 - 1e-6, &tol),
                     "line to {to:?}"
                 );
             }
@@ -57,7 +57,7 @@ fn assert_no_gouge(path: &Toolpath, region: &Region) {
                     let p = center
                         + crate::geom::Vector::from_angle(v.angle() + sweep * k as f64 / 64.0) * v.length();
                     assert!(
-                        region.distance(p) >= 3.0 - 1e-6 && region.contains(p),
+                        prepared.distance(p) >= 3.0 - 1e-6 && prepared.contains(p),
                         "arc at {p:?}"
                     );
                 }
@@ -93,11 +93,11 @@ fn one_branch_is_cut_without_retracting_between_loops() {
         boundary: rect(0.0, 0.0, 40.0, 30.0),
         islands: vec![],
     };
-    let (l, region) = linked(&pocket, 2.4, Entry::Helix);
+    let (l, prepared) = linked(&pocket, 2.4, Entry::Helix);
     assert!(l.warnings.is_empty());
     // Only the final retract.
     assert_eq!(l.toolpath.stats().retracts, 1);
-    assert_no_gouge(&l.toolpath, &region);
+    assert_no_gouge(&l.toolpath, &prepared);
     assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
     // The helix is an arc descending at the pass start.
     assert!(l
@@ -114,9 +114,9 @@ fn branches_around_a_bar_island_are_entered_separately_and_never_crossed_at_dept
         boundary: rect(0.0, 0.0, 60.0, 30.0),
         islands: vec![bar],
     };
-    let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+    let (l, prepared) = linked(&pocket, 2.0, Entry::Helix);
     assert!(l.toolpath.stats().retracts >= 2);
-    assert_no_gouge(&l.toolpath, &region);
+    assert_no_gouge(&l.toolpath, &prepared);
 }
 
 #[test]
@@ -125,11 +125,11 @@ fn a_slot_too_narrow_for_a_helix_is_entered_by_a_ramp() {
         boundary: rect(0.0, 0.0, 40.0, 6.4),
         islands: vec![],
     };
-    let (l, region) = linked(&pocket, 2.0, Entry::Helix);
+    let (l, prepared) = linked(&pocket, 2.0, Entry::Helix);
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
     assert!(!l.toolpath.moves.iter().any(|m| matches!(m, Move::Arc { .. })));
     assert!(steepest(&l.toolpath) <= 3f64.to_radians() + 1e-9);
-    assert_no_gouge(&l.toolpath, &region);
+    assert_no_gouge(&l.toolpath, &prepared);
 }
 
 #[test]
@@ -205,13 +205,13 @@ fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
         allowance: 0.0,
     };
     let plan = plan_pocket(&pocket, &clear, &tol).unwrap();
-    let region = Region::new(&pocket);
+    let prepared = PreparedPocket::new(&pocket);
     for (direction, wall_on_right) in [(Direction::Climb, true), (Direction::Conventional, false)] {
         let p = LinkParams {
             direction,
             ..params(Entry::Helix)
         };
-        let l = link(&[(&region, &plan)], &p, &tol).unwrap();
+        let l = link(&[(&prepared, &plan)], &p, &tol).unwrap();
         let (right, left) = wall_sides(&l.toolpath, &pocket, -2.0);
         // Both loops at the walls: 2 (54 + 34) round the wall; round the island its sides
         // and a quarter circle of the tool's radius at each corner.

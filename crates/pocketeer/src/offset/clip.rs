@@ -8,9 +8,8 @@
 //! valid piece ends only where it meets another raw piece at distance exactly d from the
 //! profile, never on such a part, so every crossing that bounds a valid piece survives.
 
-use super::prune::Profile;
 use super::split::Nodes;
-use crate::geom::Piece;
+use crate::geom::{Piece, SegmentIndex};
 
 /// How many times a piece is halved at most while looking for invalid parts.
 const DEPTH: u32 = 10;
@@ -27,7 +26,7 @@ const WORK: u64 = 4_000_000;
 /// than [`WORK`] tests in all.
 pub fn clip_invalid(
     pieces: &[Piece],
-    profile: &Profile,
+    walls: &SegmentIndex,
     d: f64,
     slack: f64,
     nodes: &mut Nodes,
@@ -37,7 +36,7 @@ pub fn clip_invalid(
     let mut work = 0;
     for p in pieces {
         spans.clear();
-        keep_spans(p, profile, d - slack, (0.0, 1.0), DEPTH, (&mut spans, &mut work));
+        keep_spans(p, walls, d - slack, (0.0, 1.0), DEPTH, (&mut spans, &mut work));
         if work > WORK {
             return None;
         }
@@ -72,7 +71,7 @@ pub fn clip_invalid(
 /// the profile.
 fn keep_spans(
     p: &Piece,
-    profile: &Profile,
+    walls: &SegmentIndex,
     r: f64,
     (lo, hi): (f64, f64),
     depth: u32,
@@ -85,15 +84,15 @@ fn keep_spans(
         return;
     }
     *work += 1;
-    if r - half > 0.0 && profile.nearer_than(p.segment.point_at(mid), r - half) {
+    if r - half > 0.0 && walls.any_within(p.segment.point_at(mid), r - half) {
         return;
     }
     if depth == 0 {
         out.push((lo, hi));
         return;
     }
-    keep_spans(p, profile, r, (lo, mid), depth - 1, (&mut *out, &mut *work));
-    keep_spans(p, profile, r, (mid, hi), depth - 1, (out, work));
+    keep_spans(p, walls, r, (lo, mid), depth - 1, (&mut *out, &mut *work));
+    keep_spans(p, walls, r, (mid, hi), depth - 1, (out, work));
 }
 
 #[cfg(test)]
@@ -106,7 +105,7 @@ mod tests {
         let p = Point::new;
         // The profile: a square 10 across; a piece along y = -1 from x = -20 to 20.
         let square = Contour::polygon(&[p(0.0, 0.0), p(10.0, 0.0), p(10.0, 10.0), p(0.0, 10.0)]);
-        let profile = Profile::new(&[square]);
+        let walls = SegmentIndex::new(&square.segments);
         let piece = Piece {
             segment: Segment::Line(Line::new(p(-20.0, -1.0), p(20.0, -1.0))),
             start: 0,
@@ -114,7 +113,7 @@ mod tests {
             source: 7,
         };
         let mut nodes = Nodes::new(2);
-        let kept = clip_invalid(&[piece], &profile, 2.0, 0.0, &mut nodes).unwrap();
+        let kept = clip_invalid(&[piece], &walls, 2.0, 0.0, &mut nodes).unwrap();
         assert_eq!(kept.len(), 2);
         assert_eq!((kept[0].start, kept[1].end), (0, 1));
         assert!(kept.iter().all(|k| k.source == 7));

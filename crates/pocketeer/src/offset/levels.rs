@@ -1,8 +1,8 @@
 //! Many offsets of one region at once, on every core: each level is an offset of the original
 //! region, the deeper ones offsetting only the sources of one already done.
 
-use super::{OffsetError, Region, Sources, MAX_LEVEL_SEGMENTS};
-use crate::geom::{Contour, Tolerance};
+use super::{OffsetError, Sources, MAX_LEVEL_SEGMENTS};
+use crate::geom::{Contour, PreparedPocket, Tolerance};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -12,15 +12,15 @@ type Level = (Vec<Contour>, Arc<Sources>);
 
 /// The loops at each of `distances` in turn, up to (not including) the first empty level, with
 /// the sources of each level's loops. Each level is offset from the sources of the deepest
-/// level already done below it (see [`Region::offset_with_sources`]). The first error met ends the
+/// level already done below it (see [`PreparedPocket::offset_with_sources`]). The first error met ends the
 /// work on every core.
 pub fn offsets_until_empty(
-    region: &Region,
+    region: &PreparedPocket,
     distances: &[f64],
     tol: &Tolerance,
 ) -> Result<Vec<Level>, OffsetError> {
     // Threads cost tens of microseconds to start: small jobs run on this one.
-    let elements: usize = region.contours.iter().map(|c| c.segments.len()).sum();
+    let elements: usize = region.contours().iter().map(|c| c.segments.len()).sum();
     let workers = if elements * distances.len() < 20_000 {
         1
     } else {

@@ -1,19 +1,32 @@
-//! Offsetting pockets and contours: the paper's raw offset → split → prune → stitch
-//! (`../shared/paper/summary.md` §3–§6), one stage per file.
+//! Offsetting pockets and contours: the paper's raw offset → split → prune → stitch (Göktaş,
+//! Güldaş, Dilipak 2011, §3–§6), one stage per file.
 //!
-//! Input: the contours of a region as the importer makes them, each simple (not crossing
+//! In: a [`PreparedPocket`] and a distance d. Out: the loops of the pocket eroded by d
+//! (`Vec<Contour>`: outer loops counter-clockwise, loops around islands clockwise) and, for
+//! the deeper levels, the [`Sources`] that gave them pieces. Between the stages the data is a
+//! `Vec<Piece>`: a segment with its end nodes and the element or joint it came from.
+//!
+//! - `raw.rs`: every element moved by d along its normal, joints closed by arcs or chords;
+//! - `split.rs`: the raw pieces cut where they cross;
+//! - `prune.rs`: a piece is thrown away when it comes nearer than d to the walls or lies
+//!   outside the region — the stage that decides a piece is too close;
+//! - `clip.rs`: a fallback that cuts provably invalid parts before splitting;
+//! - `levels.rs`: many distances at once, on every core;
+//! - stitching the kept pieces into loops is [`crate::geom::stitch`]'s.
+//!
+//! The contours must be as the importer makes them, each simple (not crossing
 //! itself) and none crossing another. A contour that crosses itself, even in a loop a
 //! micrometre across, has no well-defined inside there and its offset is not held to the
 //! accuracy below.
 //!
 //! Accuracy: the loops are made of exact lines and arcs, and every point of them lies at
 //! distance d from the profile within 1e-6 · max(d, 1 mm) (the property tests and the offset
-//! fuzz target check it piece by piece). Raw offset curves that come within `TOUCH` (5e-7 mm,
-//! in `split.rs`) of each other are taken as meeting there, and pieces that far inside d as at
+//! fuzz target check it piece by piece). Raw offset curves that come within
+//! [`crate::geom::TOUCH`] of each other are taken as meeting there, and pieces that far inside d as at
 //! d: offsets of walls drawn exactly 2d apart coincide only to the precision of the drawing.
 //! Where raw offset curves meet tangentially to within rounding, around elements a few
 //! micrometres across or an arc of radius d, the split may find no crossing to cut at: a
-//! joining chord coming less than `JOIN_SLACK` (1e-5 mm) inside d stays in its run so that the
+//! joining chord coming less than [`crate::geom::JOIN_SLACK`] inside d stays in its run so that the
 //! loop it closes is not lost, and stitching closes a loop wherever its walk comes back to a
 //! node it passed, so that a detour through such a chord beyond the true meeting point is a
 //! sliver loop of its own and goes.
@@ -27,8 +40,8 @@ mod split;
 pub(crate) use levels::offsets_until_empty;
 
 use crate::geom::Pocket;
-use crate::geom::{stitch_kept, Contour, Piece, PieceGraph, Point, Tolerance, WindingIndex};
-use prune::{cancel_opposites, prune, remove_dangling, Profile};
+use crate::geom::{stitch_kept, Contour, Piece, PieceGraph, Point, PreparedPocket, SegmentIndex, Tolerance};
+use prune::{cancel_opposites, prune, remove_dangling};
 use split::{split, Nodes};
 use thiserror::Error;
 
@@ -89,75 +102,18 @@ pub enum OffsetError {
     },
 }
 
-/// A region prepared for offsetting by many distances: its profile indexed for distance
-/// queries and its contours for point-in-region tests, once.
+/// Offsetting a prepared pocket: the offset stage's half of [`PreparedPocket`], whose
+/// distance index and containment test it uses to judge pieces.
 ///
 /// ```
-/// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-/// use pocketeer::geom::Pocket;
-/// use pocketeer::offset::Region;
+/// use pocketeer::geom::{Arc, Contour, Point, Pocket, PreparedPocket, Segment, Tolerance};
 /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
-/// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
+/// let pocket = PreparedPocket::new(&Pocket { boundary: disc, islands: vec![] });
 /// let tol = Tolerance::default();
-/// let radii: Vec<f64> = (1..5).map(|k| region.offset(2.0 * k as f64, &tol).unwrap()[0].signed_area()).collect();
+/// let radii: Vec<f64> = (1..5).map(|k| pocket.offset(2.0 * k as f64, &tol).unwrap()[0].signed_area()).collect();
 /// assert!((radii[3] - std::f64::consts::PI * 4.0).abs() < 1e-9);
 /// ```
-pub struct Region {
-    /// Contours with the region on their left: boundary counter-clockwise, islands clockwise.
-    contours: Vec<Contour>,
-    /// The same contours reversed: the complement on their left.
-    reversed: Vec<Contour>,
-    profile: Profile,
-    winding: Vec<WindingIndex>,
-}
-
-impl Region {
-    /// Prepares `pocket` (boundary counter-clockwise, islands clockwise).
-    pub fn new(pocket: &Pocket) -> Region {
-        Region::from_contours(pocket.contours().cloned().collect())
-    }
-
-    /// Prepares the region on the left of `loops` (counter-clockwise around material,
-    /// clockwise around holes), such as the loops of an offset: offsetting it by a negative
-    /// distance dilates them.
-    pub fn from_loops(loops: &[Contour]) -> Region {
-        Region::from_contours(loops.to_vec())
-    }
-
-    fn from_contours(contours: Vec<Contour>) -> Region {
-        let reversed = contours.iter().map(Contour::reversed).collect();
-        let profile = Profile::new(&contours);
-        let winding = contours.iter().map(|c| WindingIndex::new(&c.segments)).collect();
-        Region {
-            contours,
-            reversed,
-            profile,
-            winding,
-        }
-    }
-
-    /// True when `p` (not on a contour) lies in the region: the winding numbers of the
-    /// counter-clockwise boundary and clockwise islands add up to 1 there.
-    pub fn contains(&self, p: Point) -> bool {
-        self.contours
-            .iter()
-            .zip(&self.winding)
-            .map(|(c, i)| i.winding(&c.segments, p))
-            .sum::<i32>()
-            > 0
-    }
-
-    /// Distance from `p` to the nearest wall or island.
-    pub fn distance(&self, p: Point) -> f64 {
-        self.profile.distance(p)
-    }
-
-    /// True when the segment `s` comes nearer than `r` to a wall or an island: a tool centre
-    /// moving along `s` stays at least `r` from them exactly when this is false.
-    pub fn segment_nearer_than(&self, s: &crate::geom::Segment, r: f64, tol: &Tolerance) -> bool {
-        self.profile.segment_nearer_than(s, r, tol.eps)
-    }
-
+impl PreparedPocket {
     /// The region eroded by `d` > 0 (grown by |d| for `d` < 0): loops counter-clockwise around
     /// material, clockwise around holes.
     pub fn offset(&self, d: f64, tol: &Tolerance) -> Result<Vec<Contour>, OffsetError> {
@@ -165,22 +121,18 @@ impl Region {
             Ok(self.offset_with_sources(d, tol, None)?.0)
         } else {
             // Growing the region is eroding everything else.
-            Ok(erode(
-                &self.reversed,
-                &self.profile,
-                &|p| !self.contains(p),
-                -d,
-                tol,
-                None,
-            )?
-            .0
-            .iter()
-            .map(Contour::reversed)
-            .collect())
+            let reversed: Vec<Contour> = self.contours().iter().map(Contour::reversed).collect();
+            Ok(
+                erode(&reversed, self.walls(), &|p| !self.contains(p), -d, tol, None)?
+                    .0
+                    .iter()
+                    .map(Contour::reversed)
+                    .collect(),
+            )
         }
     }
 
-    /// The region eroded by `d` ≥ 0, like [`Region::offset`], and the [`Sources`] of its loops.
+    /// The region eroded by `d` ≥ 0, like [`PreparedPocket::offset`], and the [`Sources`] of its loops.
     /// Given the sources of an erosion by a smaller distance, only those are offset: a point
     /// of the offset at d has a disc of radius d touching the walls at one foot, and the
     /// smaller disc tangent at the same foot shows the same element (or joint) gave the smaller
@@ -188,11 +140,10 @@ impl Region {
     ///
     /// ```
     /// use pocketeer::geom::{Contour, Point, Tolerance};
-    /// use pocketeer::geom::Pocket;
-    /// use pocketeer::offset::Region;
+    /// use pocketeer::geom::{Pocket, PreparedPocket};
     /// let p = Point::new;
     /// let l = Contour::polygon(&[p(0.0, 0.0), p(60.0, 0.0), p(60.0, 10.0), p(10.0, 10.0), p(10.0, 40.0), p(0.0, 40.0)]);
-    /// let region = Region::new(&Pocket { boundary: l, islands: vec![] });
+    /// let region = PreparedPocket::new(&Pocket { boundary: l, islands: vec![] });
     /// let tol = Tolerance::default();
     /// let (_, sources) = region.offset_with_sources(1.0, &tol, None).unwrap();
     /// let (fast, _) = region.offset_with_sources(3.0, &tol, Some(&sources)).unwrap();
@@ -206,27 +157,24 @@ impl Region {
         smaller: Option<&Sources>,
     ) -> Result<(Vec<Contour>, Sources), OffsetError> {
         erode(
-            &self.contours,
-            &self.profile,
+            self.contours(),
+            self.walls(),
             &|p| self.contains(p),
             d.max(0.0),
             tol,
             smaller,
         )
     }
-}
 
-impl Region {
     /// The region eroded by each of `distances` (increasing, positive), computed on every
     /// core, up to the first distance where nothing is left; deeper levels offset only the
-    /// sources of a level already done (see [`Region::offset_with_sources`]).
+    /// sources of a level already done (see [`PreparedPocket::offset_with_sources`]).
     ///
     /// ```
     /// use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-    /// use pocketeer::geom::Pocket;
-    /// use pocketeer::offset::Region;
+    /// use pocketeer::geom::{Pocket, PreparedPocket};
     /// let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 10.0))]);
-    /// let region = Region::new(&Pocket { boundary: disc, islands: vec![] });
+    /// let region = PreparedPocket::new(&Pocket { boundary: disc, islands: vec![] });
     /// let levels = region.offset_levels(&[2.0, 4.0, 6.0, 8.0, 10.0, 12.0], &Tolerance::default()).unwrap();
     /// assert_eq!(levels.len(), 4);
     /// assert!((levels[3][0].signed_area() - std::f64::consts::PI * 4.0).abs() < 1e-9);
@@ -288,9 +236,9 @@ impl Sources {
 /// ```
 ///
 /// A negative `d` offsets outward: the pocket grows by |d| and its islands shrink. To offset
-/// one pocket by many distances, prepare it once with [`Region`].
+/// one pocket by many distances, prepare it once as a [`PreparedPocket`].
 pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Result<Vec<Contour>, OffsetError> {
-    Region::new(pocket).offset(d, tol)
+    PreparedPocket::new(pocket).offset(d, tol)
 }
 
 /// The radius of the largest circle inside `pocket` (clear of its walls and islands), within a
@@ -308,7 +256,7 @@ pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Result<Vec<Con
 /// assert!((r - 15.0).abs() < 1e-4);
 /// ```
 pub fn largest_inscribed_radius(pocket: &Pocket, tol: &Tolerance) -> Result<f64, OffsetError> {
-    let region = Region::new(pocket);
+    let region = PreparedPocket::new(pocket);
     let b = pocket.boundary.bbox();
     let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()) * (1.0 + 1e-9) + tol.eps);
     while hi - lo > 1e-6 * hi.max(1e-3) {
@@ -331,14 +279,14 @@ pub fn offset_contour(contour: &Contour, d: f64, tol: &Tolerance) -> Result<Vec<
     } else {
         contour.reversed()
     };
-    Region::from_contours(vec![ccw]).offset(d, tol)
+    PreparedPocket::from_loops(vec![ccw]).offset(d, tol)
 }
 
 /// The boundary of the region on the left of `contours` (where `inside` holds) eroded by `d`,
 /// and the sources of its pieces; only the sources in `smaller` are offset when given.
 fn erode(
     contours: &[Contour],
-    profile: &Profile,
+    walls: &SegmentIndex,
     inside: &dyn Fn(Point) -> bool,
     d: f64,
     tol: &Tolerance,
@@ -385,7 +333,7 @@ fn erode(
                 ),
                 near: pieces[o.at].segment.start(),
             };
-            let clipped = clip::clip_invalid(&raw, profile, d, prune::slack(d, tol), &mut nodes)
+            let clipped = clip::clip_invalid(&raw, walls, d, prune::slack(d, tol), &mut nodes)
                 .ok_or_else(|| too_complex(&raw, first))?;
             split(&clipped, &mut nodes, tol, budget, elements).map_err(|o| too_complex(&clipped, o))?
         }
@@ -408,16 +356,15 @@ fn erode(
         let joint = (p.source as usize).checked_sub(elements)?;
         matches!(p.segment, crate::geom::Segment::Line(_)).then_some(joint)
     };
-    let mut kept = prune(&pieces, &graph, profile, inside, &join_at, d, tol).map_err(|near| {
-        OffsetError::TooComplex {
+    let mut kept =
+        prune(&pieces, &graph, walls, inside, &join_at, d, tol).map_err(|near| OffsetError::TooComplex {
             distance: d,
             what: format!(
                 "judging its pieces would measure more than {} distances to the walls",
                 prune::MAX_MEASURES
             ),
             near,
-        }
-    })?;
+        })?;
     cancel_opposites(&pieces, &graph, &mut kept, tol);
     remove_dangling(&pieces, &graph, &mut kept);
     let mut used = vec![false; 2 * elements];

@@ -2,7 +2,7 @@
 //! d to the original profile (which also rules out crossing it) and lies inside the region.
 
 use crate::geom::PieceGraph;
-use crate::geom::{Contour, Piece, Point, Segment, SegmentIndex, Tolerance, JOIN_SLACK};
+use crate::geom::{Piece, Point, SegmentIndex, Tolerance, JOIN_SLACK};
 use crate::union_find::UnionFind;
 
 /// The most element distances [`prune`] may measure: a few seconds. Each run is judged by
@@ -15,42 +15,6 @@ pub const MAX_MEASURES: u64 = 40_000_000;
 /// [`crate::geom::offset_slack`].
 pub fn slack(d: f64, tol: &Tolerance) -> f64 {
     crate::geom::offset_slack(d, tol)
-}
-
-/// The original profile, indexed for distance queries.
-pub struct Profile {
-    index: SegmentIndex,
-}
-
-impl Profile {
-    /// Indexes the segments of `contours`.
-    pub fn new(contours: &[Contour]) -> Profile {
-        let segments: Vec<Segment> = contours.iter().flat_map(|c| c.segments.iter().copied()).collect();
-        Profile {
-            index: SegmentIndex::new(&segments),
-        }
-    }
-
-    /// True when the profile comes nearer to `p` than `r`.
-    pub fn nearer_than(&self, p: Point, r: f64) -> bool {
-        self.index.any_within(p, r)
-    }
-
-    /// [`Profile::nearer_than`], adding to `work` the number of elements measured and trying
-    /// first the element that answered `last` (see [`SegmentIndex::any_within_hinted`]).
-    pub fn nearer_than_hinted(&self, p: Point, r: f64, work: &mut u64, last: &mut Option<usize>) -> bool {
-        self.index.any_within_hinted(p, r, work, last)
-    }
-
-    /// Distance from `p` to the profile.
-    pub fn distance(&self, p: Point) -> f64 {
-        self.index.distance(p)
-    }
-
-    /// True when the profile comes nearer to the segment `s` than `r`.
-    pub fn segment_nearer_than(&self, s: &Segment, r: f64, eps: f64) -> bool {
-        self.index.segment_within(s, r, eps)
-    }
 }
 
 /// Which of `pieces` belong to the offset at distance `d`: not nearer than d to the profile
@@ -73,7 +37,7 @@ impl Profile {
 pub fn prune(
     pieces: &[Piece],
     graph: &PieceGraph,
-    profile: &Profile,
+    walls: &SegmentIndex,
     inside: &dyn Fn(Point) -> bool,
     join_at: &dyn Fn(&Piece) -> Option<usize>,
     d: f64,
@@ -98,7 +62,7 @@ pub fn prune(
                 && join_at(p).is_some_and(|element| {
                     let mid = p.segment.point_at(0.5);
                     let r = d - JOIN_SLACK.min(0.5 * d);
-                    profile.nearer_than_hinted(mid, r, &mut work, &mut Some(element))
+                    walls.any_within_hinted(mid, r, &mut work, &mut Some(element))
                 })
         })
         .collect();
@@ -129,7 +93,7 @@ pub fn prune(
             continue;
         }
         let m = pieces[i].segment.point_at(0.5);
-        *v = !profile.nearer_than_hinted(m, d - slack, &mut work, &mut last) && inside(m);
+        *v = !walls.any_within_hinted(m, d - slack, &mut work, &mut last) && inside(m);
         if work > MAX_MEASURES {
             return Err(m);
         }

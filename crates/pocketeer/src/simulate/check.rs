@@ -4,8 +4,9 @@
 use super::gcode::{Motion, Program, ProgramMove};
 use super::polygon::{largest_inscribed_circle, ring, shape_area, Shape};
 use crate::geom::Pocket;
+use crate::geom::PreparedPocket;
 use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance};
-use crate::offset::{OffsetError, Region};
+use crate::offset::OffsetError;
 use crate::toolpath::Point3;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -165,7 +166,7 @@ pub fn check_program(
     report.swept = swept(moves, final_depth, r);
     report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
-        let pc = pocket_check(p, &walls.regions[i], &report.swept, gouges[i], r, tol)?;
+        let pc = pocket_check(p, &walls.prepared[i], &report.swept, gouges[i], r, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
         report.thickest = report.thickest.max(pc.thickest);
         report.pockets.push(pc);
@@ -233,9 +234,9 @@ fn rapid_through_air(m: &ProgramMove, k: usize, history: &super::history::CutHis
         || vertical && (m.to.z >= m.from.z || history.cleared(k, m.to.xy(), m.to.z, r))
 }
 
-/// The pockets' regions and walls, indexed for the gouge measure.
+/// The pockets' prepared and walls, indexed for the gouge measure.
 struct Walls {
-    regions: Vec<Region>,
+    prepared: Vec<PreparedPocket>,
     /// The walls and islands of each pocket.
     each: Vec<SegmentIndex>,
 }
@@ -245,16 +246,16 @@ impl Walls {
         let segments =
             |p: &Pocket| -> Vec<Segment> { p.contours().flat_map(|c| c.segments.iter().copied()).collect() };
         Walls {
-            regions: pockets.iter().map(Region::new).collect(),
+            prepared: pockets.iter().map(PreparedPocket::new).collect(),
             each: pockets.iter().map(|p| SegmentIndex::new(&segments(p))).collect(),
         }
     }
 
     /// The walls of the pocket `p` lies in, if any.
     fn of_pocket_at(&self, p: Point) -> Option<&SegmentIndex> {
-        self.regions
+        self.prepared
             .iter()
-            .position(|region| region.contains(p))
+            .position(|pocket| pocket.contains(p))
             .map(|i| &self.each[i])
     }
 
@@ -269,12 +270,12 @@ impl Walls {
         tol: &Tolerance,
     ) -> Option<(usize, f64, Point)> {
         let mid = seg.point_at(0.5);
-        let n = self.regions.len();
-        let inside = (0..n).find(|&i| self.regions[i].contains(mid));
+        let n = self.prepared.len();
+        let inside = (0..n).find(|&i| self.prepared[i].contains(mid));
         let i = inside.or_else(|| {
             (0..n).min_by(|&a, &b| self.each[a].distance(mid).total_cmp(&self.each[b].distance(mid)))
         })?;
-        let (region, walls) = (&self.regions[i], &self.each[i]);
+        let (prepared, walls) = (&self.prepared[i], &self.each[i]);
         let g = if inside.is_some() {
             walls
                 .nearest_to_segment(seg, r + gouge_tolerance.max(0.0) + 1.0, tol.eps)
@@ -289,7 +290,7 @@ impl Walls {
                 let n = ((seg.length() / 0.005).ceil() as usize).clamp(1, 100_000);
                 (0..=n)
                     .map(|k| seg.point_at(k as f64 / n as f64))
-                    .filter(|&q| !region.contains(q))
+                    .filter(|&q| !prepared.contains(q))
                     .map(|q| (r + walls.distance(q), q))
                     .max_by(|a, b| a.0.total_cmp(&b.0))
                     .or(Some(found))
@@ -347,18 +348,18 @@ fn swept(moves: &[ProgramMove], depth: f64, r: f64) -> Vec<Shape> {
 
 fn pocket_check(
     pocket: &Pocket,
-    region: &Region,
+    prepared: &PreparedPocket,
     swept: &[Shape],
     gouge: (f64, Option<Place>),
     r: f64,
     tol: &Tolerance,
 ) -> Result<PocketCheck, OffsetError> {
     // What the tool can reach: the pocket eroded by the radius, then grown back.
-    let centres = region.offset(r, tol)?;
+    let centres = prepared.offset(r, tol)?;
     let reach: Vec<Contour> = if centres.is_empty() {
         Vec::new()
     } else {
-        Region::from_loops(&centres).offset(-r, tol)?
+        PreparedPocket::from_loops(centres).offset(-r, tol)?
     };
     let reach_rings: Vec<Vec<[f64; 2]>> = reach.iter().map(|c| ring(c, CHORD)).collect();
     let reachable_area: f64 = reach.iter().map(Contour::signed_area).sum();

@@ -2,8 +2,8 @@
 //! tool path values) and measures gouge and leftover against the pocket by exact distances
 //! and a fine grid.
 
+use pocketeer::geom::PreparedPocket;
 use pocketeer::geom::{Arc, Line, Point, Segment, SegmentIndex, Tolerance};
-use pocketeer::offset::Region;
 
 /// One move read back, seen from above, with its Z at both ends.
 #[derive(Debug, Clone)]
@@ -142,7 +142,7 @@ pub struct Measured {
 /// One pocket as the replay sees it: its region, its walls and islands, and the loops of the
 /// region eroded by the tool radius (the boundary of where the tool centre may go).
 pub struct Target<'a> {
-    pub region: &'a Region,
+    pub region: &'a PreparedPocket,
     pub walls: &'a [Segment],
     pub centres: &'a [Segment],
 }

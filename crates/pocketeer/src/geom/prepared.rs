@@ -1,0 +1,85 @@
+//! A pocket prepared for the questions every stage asks of it: how far a point is from the
+//! walls, whether a point is inside, whether a tool moving along a segment comes too near.
+
+use super::{Aabb, Contour, Pocket, Point, Segment, SegmentIndex, Tolerance, WindingIndex};
+
+/// A region indexed once for distance and containment queries: the walls (boundary and islands)
+/// in a [`SegmentIndex`], each contour in a [`WindingIndex`]. The clearing planner, the linker,
+/// the check and the job all ask the same prepared pocket; the offset stage erodes it (see
+/// [`PreparedPocket::offset`]).
+///
+/// ```
+/// use pocketeer::geom::{Arc, Contour, Point, Pocket, PreparedPocket, Segment};
+/// let p = Point::new;
+/// let boundary = Contour::polygon(&[p(0.0, 0.0), p(40.0, 0.0), p(40.0, 30.0), p(0.0, 30.0)]);
+/// let island = Contour::new(vec![Segment::Arc(Arc::new(p(20.0, 15.0), 5.0, 0.0, -std::f64::consts::TAU))]);
+/// let pocket = PreparedPocket::new(&Pocket { boundary, islands: vec![island] });
+/// assert!(pocket.contains(p(5.0, 5.0)));
+/// assert!(!pocket.contains(p(20.0, 15.0)));
+/// assert!((pocket.distance(p(20.0, 25.0)) - 5.0).abs() < 1e-12);
+/// ```
+pub struct PreparedPocket {
+    /// Contours with the region on their left: boundary counter-clockwise, islands clockwise.
+    contours: Vec<Contour>,
+    /// Every segment of `contours`, in order, indexed for distances.
+    walls: SegmentIndex,
+    /// One per contour.
+    winding: Vec<WindingIndex>,
+}
+
+impl PreparedPocket {
+    /// Prepares `pocket` (boundary counter-clockwise, islands clockwise).
+    pub fn new(pocket: &Pocket) -> PreparedPocket {
+        PreparedPocket::from_loops(pocket.contours().cloned().collect())
+    }
+
+    /// Prepares the region on the left of `loops` (counter-clockwise around material,
+    /// clockwise around holes), such as the loops of an offset.
+    pub fn from_loops(loops: Vec<Contour>) -> PreparedPocket {
+        let segments: Vec<Segment> = loops.iter().flat_map(|c| c.segments.iter().copied()).collect();
+        let winding = loops.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+        PreparedPocket {
+            walls: SegmentIndex::new(&segments),
+            contours: loops,
+            winding,
+        }
+    }
+
+    /// The contours, the region on their left.
+    pub fn contours(&self) -> &[Contour] {
+        &self.contours
+    }
+
+    /// The box around every contour (for a pocket, its boundary's box).
+    pub fn bbox(&self) -> Aabb {
+        self.contours.iter().fold(Aabb::EMPTY, |b, c| b.union(&c.bbox()))
+    }
+
+    /// The walls' segments, indexed; segment k of contour c is numbered after all segments
+    /// of the contours before c.
+    pub fn walls(&self) -> &SegmentIndex {
+        &self.walls
+    }
+
+    /// True when `p` (not on a contour) lies in the region: the winding numbers of the
+    /// counter-clockwise boundary and clockwise islands add up to 1 there.
+    pub fn contains(&self, p: Point) -> bool {
+        self.contours
+            .iter()
+            .zip(&self.winding)
+            .map(|(c, i)| i.winding(&c.segments, p))
+            .sum::<i32>()
+            > 0
+    }
+
+    /// Distance from `p` to the nearest wall or island.
+    pub fn distance(&self, p: Point) -> f64 {
+        self.walls.distance(p)
+    }
+
+    /// True when the segment `s` comes nearer than `r` to a wall or an island: a tool centre
+    /// moving along `s` stays at least `r` from them exactly when this is false.
+    pub fn segment_nearer_than(&self, s: &Segment, r: f64, tol: &Tolerance) -> bool {
+        self.walls.segment_within(s, r, tol.eps)
+    }
+}
