@@ -80,7 +80,7 @@ fn main() {
                 ramp_angle: 3f64.to_radians(),
             };
             let tol = &analysis.tolerance;
-            let pockets = &analysis.regions.pockets;
+            let pockets = &analysis.nesting.pockets;
             let regions: Vec<pocketeer::geom::PreparedPocket> =
                 pockets.iter().map(pocketeer::geom::PreparedPocket::new).collect();
             let plans: Vec<_> = regions

@@ -76,7 +76,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         leftover_tolerance: args.leftover_tolerance,
         rapid_rate: args.rapid_rate,
     };
-    let report = check_program(&analysis.regions.pockets, &program, &params, &analysis.tolerance)
+    let report = check_program(&analysis.nesting.pockets, &program, &params, &analysis.tolerance)
         .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
     if let Some(path) = &args.svg {
         output::write_atomic(path, preview(&analysis, &program, &report).as_bytes()).map_err(Failure)?;

@@ -118,7 +118,7 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
             o.end
         ));
     }
-    warnings.extend(a.regions.warnings.iter().cloned());
+    warnings.extend(a.nesting.warnings.iter().cloned());
     warnings
 }
 
@@ -142,7 +142,7 @@ impl Report {
             .chains
             .contours
             .iter()
-            .zip(&a.regions.levels)
+            .zip(&a.nesting.depths)
             .map(|(c, &level)| ContourRow {
                 layer: layer_name(c.layer),
                 closed: true,
@@ -169,7 +169,7 @@ impl Report {
             })
             .collect();
         let pockets = a
-            .regions
+            .nesting
             .pockets
             .iter()
             .map(|p| PocketRow {

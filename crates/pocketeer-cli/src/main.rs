@@ -143,7 +143,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     let tol = &analysis.tolerance;
     let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
     let name = args.drawing.file.display();
-    for (k, p) in analysis.regions.pockets.iter().enumerate() {
+    for (k, p) in analysis.nesting.pockets.iter().enumerate() {
         let at = p
             .boundary
             .segments
@@ -186,7 +186,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     }
     eprintln!(
         "{} offset by {} mm: {} written to {}",
-        display::count(analysis.regions.pockets.len(), "pocket", "pockets"),
+        display::count(analysis.nesting.pockets.len(), "pocket", "pockets"),
         display::num(args.distance, 6),
         display::count(loops.len(), "loop", "loops"),
         output::describe(&args.output)

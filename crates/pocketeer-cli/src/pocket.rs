@@ -357,7 +357,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     warnings.extend(crate::sanity::size_warnings(&analysis));
     crate::print_warnings(&warnings);
     let tol = &analysis.tolerance;
-    let job = pocketeer::job::pocket_job(&analysis.regions.pockets, &s.clear(args), &s.link(args), tol)
+    let job = pocketeer::job::pocket_job(&analysis.nesting.pockets, &s.clear(args), &s.link(args), tol)
         .map_err(|e| match e {
             pocketeer::job::JobError::ToolFitsNowhere { .. } => Failure(format!(
                 "{name}: {e}; {}",
@@ -394,7 +394,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     }
     eprintln!(
         "{}, {} in {}: cutting {}, rapid {}, {}, about {} (rapids at {}); written to {}",
-        count(analysis.regions.pockets.len(), "pocket", "pockets"),
+        count(analysis.nesting.pockets.len(), "pocket", "pockets"),
         count(loops, "loop", "loops"),
         count(passes, "pass", "passes"),
         u.distance(figures.feed_length),
@@ -461,7 +461,7 @@ fn header(
         ),
         format!(
             "{}, {}, retracts {}",
-            count(analysis.regions.pockets.len(), "pocket", "pockets"),
+            count(analysis.nesting.pockets.len(), "pocket", "pockets"),
             count(loops, "loop", "loops"),
             figures.retracts
         ),
@@ -496,7 +496,7 @@ fn self_check(
     let read = pocketeer::simulate::read_program(program)
         .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
     let report =
-        pocketeer::simulate::check_program(&analysis.regions.pockets, &read, &params, &analysis.tolerance)
+        pocketeer::simulate::check_program(&analysis.nesting.pockets, &read, &params, &analysis.tolerance)
             .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
     eprint!("{}", crate::check::to_text(&report, &params));
     if report.passed {

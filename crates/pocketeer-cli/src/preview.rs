@@ -8,7 +8,7 @@ use pocketeer::Analysis;
 /// An SVG document of the drawing of `a` with `layers` drawn over it.
 pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
     let walls: Vec<Contour> = a
-        .regions
+        .nesting
         .pockets
         .iter()
         .flat_map(|p| p.contours().cloned())

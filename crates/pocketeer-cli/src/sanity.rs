@@ -17,7 +17,7 @@ pub const LONGEST_JOB: f64 = 24.0 * 3600.0;
 
 /// The extent of every pocket together (empty when there are none).
 pub fn pockets_extent(a: &Analysis) -> Aabb {
-    a.regions
+    a.nesting
         .pockets
         .iter()
         .fold(Aabb::EMPTY, |b, p| b.union(&p.boundary.bbox()))

@@ -804,7 +804,7 @@ fn corpus_offsets_match_an_independent_erosion() {
         // Pockets are offset one by one, and may overlap: each is judged with the loops that
         // lie on it.
         let regions: Vec<Region> = analysis
-            .regions
+            .nesting
             .pockets
             .iter()
             .map(|p| {

@@ -52,7 +52,7 @@ pub fn pocket_job(
         .iter()
         .map(|p| plan_prepared(p, clear, tol))
         .collect::<Result<Vec<_>, _>>()?;
-    if !pockets.is_empty() && plans.iter().all(|p| p.nodes.is_empty()) {
+    if !pockets.is_empty() && plans.iter().all(|p| p.parts.is_empty()) {
         return Err(JobError::ToolFitsNowhere {
             diameter: 2.0 * clear.tool_radius,
             pockets: pockets.len(),
@@ -62,11 +62,11 @@ pub fn pocket_job(
     let jobs: Vec<(&PreparedPocket, &ClearPlan)> = prepared
         .iter()
         .zip(&plans)
-        .filter(|(_, p)| !p.nodes.is_empty())
+        .filter(|(_, p)| !p.parts.is_empty())
         .collect();
     let mut linked = link(&jobs, link_params, tol)?;
     for (i, p) in plans.iter().enumerate() {
-        if p.nodes.is_empty() {
+        if p.parts.is_empty() {
             linked.warnings.push(format!(
                 "pocket {} (area {:.3} mm², near {}) is too narrow for the tool: not cut",
                 i + 1,

@@ -6,7 +6,7 @@
 //!
 //! ```text
 //! DXF bytes
-//!   └─ import::analyze       read, join end points, nest      → Analysis { regions.pockets: Vec<geom::Pocket> }
+//!   └─ import::analyze       read, join end points, nest      → Analysis { nesting.pockets: Vec<geom::Pocket> }
 //!      └─ clear::plan_prepared levels r + allowance + k·stepover → ClearPlan (a tree of loops, clean-up paths)
 //!         │   (offset: the paper's raw offset → split → prune → stitch, exact lines and arcs)
 //!         └─ link::link        order, entries, links, passes    → Linked { toolpath: Toolpath }
@@ -34,7 +34,7 @@
 //!            0\nCIRCLE\n8\nplate\n10\n30\n20\n20\n40\n8\n\
 //!            0\nENDSEC\n0\nEOF\n";
 //! let analysis = pocketeer::analyze(dxf.as_bytes(), &pocketeer::ImportOptions::default()).unwrap();
-//! let pockets = &analysis.regions.pockets;
+//! let pockets = &analysis.nesting.pockets;
 //! assert_eq!((pockets.len(), pockets[0].islands.len()), (1, 1));
 //!
 //! // A 6 mm tool, 40 % stepover, 3 mm deep in two passes, climb milling.

@@ -15,8 +15,8 @@ fn analyze_file(rel: &str) -> Result<Analysis, ImportError> {
 #[test]
 fn empty_handles_is_one_pocket_with_one_island() {
     let a = analyze_file("corpus/mit/empty_handles.dxf").unwrap();
-    assert_eq!(a.regions.pockets.len(), 1);
-    let p = &a.regions.pockets[0];
+    assert_eq!(a.nesting.pockets.len(), 1);
+    let p = &a.nesting.pockets[0];
     assert!((p.boundary.signed_area() - 56100.0).abs() < 1e-6);
     assert_eq!(p.islands.len(), 1);
     assert!((p.islands[0].signed_area() + 1292.0).abs() < 1e-6);
@@ -26,7 +26,7 @@ fn empty_handles_is_one_pocket_with_one_island() {
 fn rotated_inserts_make_one_contour_of_2000() {
     let a = analyze_file("corpus/cc0/example013.dxf").unwrap();
     assert_eq!(a.chains.contours.len(), 1);
-    assert!((a.regions.pockets[0].area() - 2000.0).abs() < 1e-6);
+    assert!((a.nesting.pockets[0].area() - 2000.0).abs() < 1e-6);
 }
 
 #[test]
@@ -54,7 +54,7 @@ fn binary_dxf_r12_and_r2000_are_read() {
 #[test]
 fn bytes_after_eof_are_ignored() {
     let a = analyze_file("corpus/mit/R12_with_trash_beyond_EOF.dxf").unwrap();
-    assert_eq!(a.regions.pockets.len(), 1);
+    assert_eq!(a.nesting.pockets.len(), 1);
 }
 
 #[test]
@@ -73,7 +73,7 @@ fn every_fixture_imports_or_is_refused_with_a_message() {
             let path = entry.unwrap().path();
             let bytes = std::fs::read(&path).unwrap();
             match analyze(&bytes, &ImportOptions::default()) {
-                Ok(a) => assert!(!a.regions.pockets.is_empty(), "{}", path.display()),
+                Ok(a) => assert!(!a.nesting.pockets.is_empty(), "{}", path.display()),
                 Err(e) => assert!(!e.to_string().is_empty()),
             }
         }

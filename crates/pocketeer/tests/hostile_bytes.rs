@@ -154,5 +154,5 @@ fn a_hundred_thousand_coincident_lines_are_one_line() {
     let text = common::Drawing::new(ents).text();
     let a = analyze(text.as_bytes(), &ImportOptions::default()).unwrap();
     assert_eq!(a.chains.duplicates_dropped, 99_999);
-    assert_eq!(a.regions.pockets.len(), 1);
+    assert_eq!(a.nesting.pockets.len(), 1);
 }

@@ -20,7 +20,7 @@ fn read_err(d: &Drawing) -> ImportError {
 
 /// (net area, boundary area, island areas) of every pocket.
 fn pockets(a: &Analysis) -> Vec<(f64, f64, Vec<f64>)> {
-    a.regions
+    a.nesting
         .pockets
         .iter()
         .map(|p| {
@@ -56,8 +56,8 @@ fn rectangle_with_a_circle_island_in_any_order_and_direction() {
         let p = pockets(&a);
         assert_eq!(p.len(), 1);
         assert!(close(p[0].0, 6000.0 - 25.0 * PI, 1e-9), "{p:?}");
-        assert!(a.regions.pockets[0].boundary.is_ccw());
-        assert!(!a.regions.pockets[0].islands[0].is_ccw());
+        assert!(a.nesting.pockets[0].boundary.is_ccw());
+        assert!(!a.nesting.pockets[0].islands[0].is_ccw());
     }
 }
 
@@ -113,7 +113,7 @@ fn gaps_below_the_tolerance_close_and_a_duplicated_edge_is_dropped() {
     assert!(a.chains.largest_gap <= 0.001);
     assert!(close(pockets(&a)[0].0, 1500.0, 0.1));
     // Joined ends are moved onto one node: the contour closes exactly.
-    let segs = &a.regions.pockets[0].boundary.segments;
+    let segs = &a.nesting.pockets[0].boundary.segments;
     for k in 0..segs.len() {
         assert_eq!(segs[k].end(), segs[(k + 1) % segs.len()].start());
     }
@@ -154,7 +154,7 @@ fn a_pocket_inside_an_island_is_a_pocket_of_its_own() {
         rect_poly("0", 40.0, 40.0, 60.0, 60.0),
     ];
     let a = read(&Drawing::new(ents));
-    assert_eq!(a.regions.levels, vec![0, 1, 2]);
+    assert_eq!(a.nesting.depths, vec![0, 1, 2]);
     let p = pockets(&a);
     assert_eq!(p.len(), 2);
     assert!(close(p[0].0, 10000.0 - 3600.0, 1e-9) && p[0].2.len() == 1);
@@ -191,7 +191,7 @@ fn overlapping_islands_merge_into_one() {
         p[0].0,
         6000.0 - union
     );
-    assert!(a.regions.warnings.iter().any(|w| w.contains("merged")));
+    assert!(a.nesting.warnings.iter().any(|w| w.contains("merged")));
 }
 
 #[test]
@@ -220,7 +220,7 @@ fn an_island_crossing_the_wall_cuts_the_pocket_back() {
     let (r, h) = (10.0f64, 3.0f64);
     let outside = r * r * (h / r).acos() - h * (r * r - h * h).sqrt();
     assert!(close(p[0].0, 6000.0 - (PI * r * r - outside), 1e-6), "{p:?}");
-    assert!(a.regions.warnings.iter().any(|w| w.contains("cut back")));
+    assert!(a.nesting.warnings.iter().any(|w| w.contains("cut back")));
 }
 
 #[test]
@@ -299,7 +299,7 @@ fn a_2000_vertex_polyline() {
     let a = read(&Drawing::new(vec![lwpoly("0", &pts, true)]));
     let exact = 0.5 * n as f64 * r * r * (2.0 * PI / n as f64).sin();
     assert!(close(pockets(&a)[0].0, exact, 1e-6));
-    assert_eq!(a.regions.pockets[0].boundary.segments.len(), n);
+    assert_eq!(a.nesting.pockets[0].boundary.segments.len(), n);
 }
 
 #[test]
@@ -331,7 +331,7 @@ fn blocks_are_inserted_with_rotation_scale_mirror_and_nesting() {
     }
     // The nested one: centre at (300, 0) + rotate90(scale 3 × (5, 0)) = (300, 15).
     let big = a
-        .regions
+        .nesting
         .pockets
         .iter()
         .find(|p| p.area() > 800.0)
@@ -396,7 +396,7 @@ fn extrusion_minus_z_mirrors_arcs_and_circles() {
         .g(230, -1.0);
     let chord = line("0", -15.0, 0.0, -5.0, 0.0);
     let a = read(&Drawing::new(vec![flipped, half, chord]));
-    let boxes: Vec<_> = a.regions.pockets.iter().map(|p| p.boundary.bbox()).collect();
+    let boxes: Vec<_> = a.nesting.pockets.iter().map(|p| p.boundary.bbox()).collect();
     assert!(boxes
         .iter()
         .any(|b| close(b.min.x, -32.0, 1e-9) && close(b.max.x, -28.0, 1e-9)));
@@ -500,7 +500,7 @@ fn paper_space_is_ignored_and_layers_filter() {
     ];
     let text = Drawing::new(ents).text();
     let all = analyze(text.as_bytes(), &ImportOptions::default()).unwrap();
-    assert_eq!(all.regions.pockets.len(), 2);
+    assert_eq!(all.nesting.pockets.len(), 2);
     let only = analyze(
         text.as_bytes(),
         &ImportOptions {
@@ -509,8 +509,8 @@ fn paper_space_is_ignored_and_layers_filter() {
         },
     )
     .unwrap();
-    assert_eq!(only.regions.pockets.len(), 1);
-    assert!(close(only.regions.pockets[0].area(), 100.0, 1e-9));
+    assert_eq!(only.nesting.pockets.len(), 1);
+    assert!(close(only.nesting.pockets[0].area(), 100.0, 1e-9));
 }
 
 #[test]
@@ -585,7 +585,7 @@ fn an_outline_with_a_gap_around_islands_is_refused() {
         ..Default::default()
     };
     let a = analyze(d.text().as_bytes(), &ignore).unwrap();
-    assert_eq!(a.regions.pockets.len(), 1);
+    assert_eq!(a.nesting.pockets.len(), 1);
 }
 
 #[test]

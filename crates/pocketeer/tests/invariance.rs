@@ -173,7 +173,7 @@ fn file_cases() -> Vec<Case> {
         let Ok(a) = pocketeer::analyze(&bytes, &ImportOptions::default()) else {
             continue;
         };
-        for (k, p) in a.regions.pockets.iter().enumerate() {
+        for (k, p) in a.nesting.pockets.iter().enumerate() {
             let b = p.boundary.bbox();
             let size = b.width().min(b.height());
             let name = format!(
@@ -240,7 +240,7 @@ fn pockets_through_dxf(contours: &[Contour]) -> Vec<Pocket> {
     let text = write_dxf(&layered, Units::Millimeters);
     pocketeer::analyze(text.as_bytes(), &ImportOptions::default())
         .expect("a drawing written by pocketeer reads back")
-        .regions
+        .nesting
         .pockets
 }
 
@@ -316,10 +316,10 @@ fn check(cases: &[Case]) {
                     plan_pocket(p, &params, &tol(p)).expect("plan"),
                     plan_pocket(q, &params, &tol(q)).expect("plan"),
                 );
-                assert_eq!(a.nodes.len(), b.nodes.len(), "{name}: parts of the plan");
+                assert_eq!(a.parts.len(), b.parts.len(), "{name}: parts of the plan");
                 assert_eq!(a.loop_count(), b.loop_count(), "{name}: loops of the plan");
                 let area = |p: &pocketeer::clear::ClearPlan| -> f64 {
-                    p.nodes
+                    p.parts
                         .iter()
                         .flat_map(|n| n.loops())
                         .map(Contour::signed_area)

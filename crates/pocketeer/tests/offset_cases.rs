@@ -365,8 +365,8 @@ fn an_island_crossing_the_wall_read_from_a_drawing() {
     }
     text += "0\nCIRCLE\n8\n0\n10\n100\n20\n30\n40\n10\n0\nENDSEC\n0\nEOF\n";
     let analysis = pocketeer::analyze(text.as_bytes(), &Default::default()).unwrap();
-    assert_eq!(analysis.regions.pockets.len(), 1);
-    let pocket = &analysis.regions.pockets[0];
+    assert_eq!(analysis.nesting.pockets.len(), 1);
+    let pocket = &analysis.nesting.pockets[0];
     assert!(
         (pocket.area() - (6000.0 - PI * 50.0)).abs() < 1e-6,
         "{}",

@@ -51,7 +51,7 @@ fn imported_as_drawn(vertices: &[(i16, i16, i8)]) -> Contour {
 }
 
 /// The importer's verdict on one contour.
-fn regions_of(contour: Contour) -> Result<pocketeer::import::Regions, pocketeer::ImportError> {
+fn regions_of(contour: Contour) -> Result<pocketeer::import::Nesting, pocketeer::ImportError> {
     let tol = Tolerance::for_extent(&contour.bbox(), 0.001);
     let chained = pocketeer::import::ChainedContour {
         contour,
@@ -328,7 +328,7 @@ fn three_tiny_semicircles_at_a_hundredth() {
 // now takes its outline through the importer; this test keeps the refusal.
 
 /// The importer's verdict on `case`'s outline.
-fn imported(vertices: &[(i16, i16, i8)]) -> Result<pocketeer::import::Regions, pocketeer::ImportError> {
+fn imported(vertices: &[(i16, i16, i8)]) -> Result<pocketeer::import::Nesting, pocketeer::ImportError> {
     regions_of(outline(vertices))
 }
 

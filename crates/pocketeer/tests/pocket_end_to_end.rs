@@ -180,7 +180,7 @@ fn corpus_drawings_are_cleared_cleanly() {
             continue;
         };
         for percent in [40.0, 83.0] {
-            let pockets = &analysis.regions.pockets;
+            let pockets = &analysis.nesting.pockets;
             let fits = pocketeer::job::pocket_job(
                 pockets,
                 &ClearParams {
@@ -235,7 +235,7 @@ fn the_bracket_example_is_cleared_cleanly() {
     let analysis = pocketeer::analyze(&std::fs::read(path).unwrap(), &Default::default()).unwrap();
     for stepover in [3.0, 5.1] {
         let o = run(
-            &analysis.regions.pockets,
+            &analysis.nesting.pockets,
             6.0,
             stepover,
             8.0,
@@ -299,7 +299,7 @@ fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
         let j = pocketeer::job::pocket_job(std::slice::from_ref(p), &clear, &link, &tol).unwrap();
         let loops: usize = j.plans.iter().map(|p| p.loop_count()).sum();
         let levels: Vec<f64> = j.plans[0]
-            .nodes
+            .parts
             .iter()
             .map(|n| n.outer.signed_area() + n.holes.iter().map(Contour::signed_area).sum::<f64>())
             .collect();

@@ -89,7 +89,7 @@ pub struct Path {
 
 /// One connected part of one level: an outer loop and the loops around the islands inside it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Node {
+pub struct Part {
     /// Index of the level: 0 is the one nearest the walls.
     pub level: usize,
     /// Distance of the loops from the walls and islands, mm.
@@ -107,7 +107,7 @@ pub struct Node {
     pub cleanups: Vec<Path>,
 }
 
-impl Node {
+impl Part {
     /// The outer loop, then the loops around islands.
     pub fn loops(&self) -> impl Iterator<Item = &Contour> {
         std::iter::once(&self.outer).chain(&self.holes)
@@ -118,7 +118,7 @@ impl Node {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ClearPlan {
     /// All parts of all levels.
-    pub nodes: Vec<Node>,
+    pub parts: Vec<Part>,
     /// The parts of level 0.
     pub roots: Vec<usize>,
     /// The level distances used, mm.
@@ -131,7 +131,7 @@ pub struct ClearPlan {
 impl ClearPlan {
     /// Number of loops to cut, clean-up paths included.
     pub fn loop_count(&self) -> usize {
-        self.nodes
+        self.parts
             .iter()
             .map(|n| 1 + n.holes.len() + n.cleanups.len())
             .sum()
@@ -252,7 +252,7 @@ mod tests {
             allowance: 0.0,
         };
         let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
-        assert!(plan.nodes.is_empty());
+        assert!(plan.parts.is_empty());
     }
 
     #[test]
@@ -271,14 +271,14 @@ mod tests {
         };
         let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
         assert_eq!(plan.roots.len(), 1);
-        let root = &plan.nodes[plan.roots[0]];
+        let root = &plan.parts[plan.roots[0]];
         assert_eq!(root.holes.len(), 1);
         // Some level has two parts with the same parent.
-        assert!(plan.nodes.iter().any(|n| n.children.len() == 2));
-        for (i, n) in plan.nodes.iter().enumerate() {
+        assert!(plan.parts.iter().any(|n| n.children.len() == 2));
+        for (i, n) in plan.parts.iter().enumerate() {
             for &c in &n.children {
-                assert_eq!(plan.nodes[c].parent, Some(i));
-                assert_eq!(plan.nodes[c].level, n.level + 1);
+                assert_eq!(plan.parts[c].parent, Some(i));
+                assert_eq!(plan.parts[c].level, n.level + 1);
             }
         }
     }

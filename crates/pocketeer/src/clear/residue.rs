@@ -31,7 +31,7 @@ pub fn add_cleanups(
     let r = params.tool_radius;
     let levels = plan.distances.len();
     let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels];
-    for (i, n) in plan.nodes.iter().enumerate() {
+    for (i, n) in plan.parts.iter().enumerate() {
         by_level[n.level].push(i);
     }
     let nominal = |k: usize| {
@@ -66,7 +66,7 @@ pub fn add_cleanups(
             .get(k)
             .into_iter()
             .flatten()
-            .flat_map(|&i| plan.nodes[i].loops())
+            .flat_map(|&i| plan.parts[i].loops())
             .flat_map(|c| c.segments.iter().copied())
             .collect()
     };
@@ -86,13 +86,13 @@ pub fn add_cleanups(
         };
         for l in &half_loops[gi] {
             for path in gap.needed(l) {
-                let owner = enclosing(&plan.nodes, &by_level[k], path.segments[0].start());
+                let owner = enclosing(&plan.parts, &by_level[k], path.segments[0].start());
                 found.push((owner, path));
             }
         }
     }
     for (owner, path) in found {
-        plan.nodes[owner].cleanups.push(path);
+        plan.parts[owner].cleanups.push(path);
     }
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! with the loops around islands inside it), and each part lies inside exactly one part of the
 //! level before, because eroding further only removes points.
 
-use super::{ClearPlan, Node};
+use super::{ClearPlan, Part};
 use crate::geom::{Aabb, Contour, Point};
 
 /// The parts of each level, linked to the part of the previous level they lie in.
@@ -16,17 +16,17 @@ pub fn build(levels: Vec<Vec<Contour>>, distances: &[f64]) -> ClearPlan {
         let parts = parts(loops);
         let mut current = Vec::with_capacity(parts.len());
         for (outer, holes) in parts {
-            let id = plan.nodes.len();
+            let id = plan.parts.len();
             let parent = if level == 0 {
                 plan.roots.push(id);
                 None
             } else {
-                Some(enclosing(&plan.nodes, &previous, outer.segments[0].start()))
+                Some(enclosing(&plan.parts, &previous, outer.segments[0].start()))
             };
             if let Some(p) = parent {
-                plan.nodes[p].children.push(id);
+                plan.parts[p].children.push(id);
             }
-            plan.nodes.push(Node {
+            plan.parts.push(Part {
                 level,
                 distance: distances[level],
                 outer,
@@ -44,21 +44,21 @@ pub fn build(levels: Vec<Vec<Contour>>, distances: &[f64]) -> ClearPlan {
 
 /// The index among `candidates` of the part whose outer loop encloses `p` (the nearest by box
 /// when rounding puts `p` on no outer loop's inside).
-pub fn enclosing(nodes: &[Node], candidates: &[usize], p: Point) -> usize {
+pub fn enclosing(parts: &[Part], candidates: &[usize], p: Point) -> usize {
     if candidates.len() == 1 {
         return candidates[0];
     }
     let inside = candidates
         .iter()
         .copied()
-        .filter(|&c| nodes[c].outer.bbox().contains(p))
-        .find(|&c| nodes[c].outer.contains(p));
+        .filter(|&c| parts[c].outer.bbox().contains(p))
+        .find(|&c| parts[c].outer.contains(p));
     inside.unwrap_or_else(|| {
         candidates
             .iter()
             .copied()
             .min_by(|&a, &b| {
-                box_gap(&nodes[a].outer.bbox(), p).total_cmp(&box_gap(&nodes[b].outer.bbox(), p))
+                box_gap(&parts[a].outer.bbox(), p).total_cmp(&box_gap(&parts[b].outer.bbox(), p))
             })
             .unwrap_or(0)
     })

@@ -1,5 +1,5 @@
 //! A static packed R-tree: boxes sorted along a Hilbert curve and grouped sixteen to a node,
-//! level by level, in flat arrays. Built once in O(n log n), it answers box and distance
+//! height by height, in flat arrays. Built once in O(n log n), it answers box and distance
 //! queries without allocating per node, and a small set of boxes is a single node that a query
 //! scans straight through.
 
@@ -27,12 +27,12 @@ const NODE_SIZE: usize = 16;
 /// assert_eq!(nearest, 40);
 /// ```
 pub struct PackedTree {
-    /// Level 0: the items' boxes in tree order; then the nodes of each level up to the root.
+    /// Height 0: the items' boxes in tree order; then the nodes of each height up to the root.
     boxes: Vec<Aabb>,
-    /// Level 0: the item at that position; above: the position of the node's first child.
+    /// Height 0: the item at that position; above: the position of the node's first child.
     ids: Vec<usize>,
-    /// Where each level ends in `boxes`.
-    level_ends: Vec<usize>,
+    /// Where each height ends in `boxes`.
+    height_ends: Vec<usize>,
 }
 
 /// Position of the cell (x, y) along a Hilbert curve over a 65536 × 65536 grid.
@@ -78,7 +78,7 @@ impl PackedTree {
         items.sort_by_cached_key(|&i| key(&boxes[i]));
         let mut tree_boxes: Vec<Aabb> = items.iter().map(|&i| boxes[i]).collect();
         let mut ids = items;
-        let mut level_ends = vec![tree_boxes.len()];
+        let mut height_ends = vec![tree_boxes.len()];
         let mut start = 0;
         while tree_boxes.len() - start > 1 {
             let end = tree_boxes.len();
@@ -91,18 +91,18 @@ impl PackedTree {
                 ids.push(first);
             }
             start = end;
-            level_ends.push(tree_boxes.len());
+            height_ends.push(tree_boxes.len());
         }
         PackedTree {
             boxes: tree_boxes,
             ids,
-            level_ends,
+            height_ends,
         }
     }
 
     /// Number of items indexed.
     pub fn len(&self) -> usize {
-        self.level_ends[0]
+        self.height_ends[0]
     }
 
     /// True when nothing is indexed.
@@ -118,16 +118,16 @@ impl PackedTree {
             .zip(&self.boxes[..self.len()])
     }
 
-    /// The children of the node at `pos` on level `level` (> 0), as positions.
-    fn children(&self, pos: usize, level: usize) -> std::ops::Range<usize> {
+    /// The children of the node at `pos` on height `height` (> 0), as positions.
+    fn children(&self, pos: usize, height: usize) -> std::ops::Range<usize> {
         let first = self.ids[pos];
-        first..(first + NODE_SIZE).min(self.level_ends[level - 1])
+        first..(first + NODE_SIZE).min(self.height_ends[height - 1])
     }
 
-    /// The root's position and level, when there is anything indexed.
+    /// The root's position and height, when there is anything indexed.
     fn root(&self) -> Option<(usize, usize)> {
         let pos = self.boxes.len().checked_sub(1)?;
-        Some((pos, self.level_ends.len() - 1))
+        Some((pos, self.height_ends.len() - 1))
     }
 
     /// The items whose boxes pass `keep`, where `keep` must pass every box that contains a
@@ -156,25 +156,25 @@ impl PackedTree {
         bound: impl Fn(&Aabb) -> f64,
         exact: impl Fn(usize) -> f64,
     ) -> Option<(usize, f64)> {
-        let (pos, level) = self.root()?;
+        let (pos, height) = self.root()?;
         let mut queue = BinaryHeap::new();
         queue.push(Queued {
             key: bound(&self.boxes[pos]),
             pos,
-            level,
+            height,
         });
         while let Some(q) = queue.pop() {
-            match q.level {
+            match q.height {
                 EXACT => return Some((self.ids[q.pos], q.key)),
                 0 => queue.push(Queued {
                     key: exact(self.ids[q.pos]),
-                    level: EXACT,
+                    height: EXACT,
                     ..q
                 }),
-                level => queue.extend(self.children(q.pos, level).map(|c| Queued {
+                height => queue.extend(self.children(q.pos, height).map(|c| Queued {
                     key: bound(&self.boxes[c]),
                     pos: c,
-                    level: level - 1,
+                    height: height - 1,
                 })),
             }
         }
@@ -182,14 +182,14 @@ impl PackedTree {
     }
 }
 
-/// The level of a queued item whose key is its exact value rather than a bound.
+/// The height of a queued item whose key is its exact value rather than a bound.
 const EXACT: usize = usize::MAX;
 
 /// A node, an item's box or an item, queued by its key, least first.
 struct Queued {
     key: f64,
     pos: usize,
-    level: usize,
+    height: usize,
 }
 
 impl PartialEq for Queued {
@@ -211,7 +211,7 @@ impl Ord for Queued {
         // Reversed: the heap pops the least key; at equal keys an exact value comes first.
         o.key
             .total_cmp(&self.key)
-            .then_with(|| (self.level == EXACT).cmp(&(o.level == EXACT)))
+            .then_with(|| (self.height == EXACT).cmp(&(o.height == EXACT)))
     }
 }
 
@@ -219,10 +219,10 @@ impl Ord for Queued {
 pub struct Search<'a, K> {
     tree: &'a PackedTree,
     keep: K,
-    /// Nodes above the lowest level still to open, with their levels: at most fifteen per
-    /// level below the root, so a tree of a billion items needs fewer than the 128 inline.
+    /// Nodes above the leaves still to open, with their heights: at most fifteen per
+    /// height below the root, so a tree of a billion items needs fewer than the 128 inline.
     stack: SmallVec<[(usize, usize); 128]>,
-    /// Item positions of the lowest-level node being scanned.
+    /// Item positions of the lowest-height node being scanned.
     items: std::ops::Range<usize>,
 }
 
@@ -237,14 +237,14 @@ impl<K: Fn(&Aabb) -> bool> Iterator for Search<'_, K> {
                     return Some(self.tree.ids[pos]);
                 }
             }
-            let (pos, level) = self.stack.pop()?;
-            match level {
+            let (pos, height) = self.stack.pop()?;
+            match height {
                 0 => return Some(self.tree.ids[pos]),
                 1 => self.items = self.tree.children(pos, 1),
                 _ => {
-                    for c in self.tree.children(pos, level) {
+                    for c in self.tree.children(pos, height) {
                         if (self.keep)(&self.tree.boxes[c]) {
-                            self.stack.push((c, level - 1));
+                            self.stack.push((c, height - 1));
                         }
                     }
                 }
@@ -316,7 +316,7 @@ mod tests {
 
     #[test]
     fn hilbert_visits_neighbouring_cells_in_turn() {
-        // On the 2x2 top level the curve runs (0,0), (0,1), (1,1), (1,0).
+        // On the 2x2 top height the curve runs (0,0), (0,1), (1,1), (1,0).
         let h = 1 << 15;
         let order = [hilbert(0, 0), hilbert(0, h), hilbert(h, h), hilbert(h, 0)];
         assert!(order.windows(2).all(|w| w[0] < w[1]));

@@ -12,7 +12,7 @@ pub struct Analysis {
     /// Its elements joined into contours.
     pub chains: super::Chains,
     /// The contours nested into pockets.
-    pub regions: super::Regions,
+    pub nesting: super::Nesting,
     /// The tolerances used.
     pub tolerance: crate::geom::Tolerance,
 }
@@ -34,11 +34,11 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
     if !options.ignore_open {
         refuse_open_outlines(&drawing, &chains)?;
     }
-    let regions = super::find_pockets(&chains.contours, &drawing.layers, &tolerance)?;
+    let nesting = super::find_pockets(&chains.contours, &drawing.layers, &tolerance)?;
     Ok(Analysis {
         drawing,
         chains,
-        regions,
+        nesting,
         tolerance,
     })
 }

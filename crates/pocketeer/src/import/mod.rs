@@ -10,15 +10,15 @@ pub mod dxf;
 mod entities;
 pub mod error;
 mod expand;
+pub mod nesting;
 mod nodes;
-pub mod region;
 pub mod self_crossing;
 pub mod units;
 
 pub use analysis::{analyze, Analysis};
 pub use chain::{chain, ChainedContour, Chains, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
-pub use region::{find_pockets, Regions};
+pub use nesting::{find_pockets, Nesting};
 pub use units::Units;
 
 use crate::geom::{Aabb, Segment, Tolerance, DEFAULT_JOIN_TOLERANCE};

@@ -15,7 +15,7 @@ mod walk;
 
 pub use entry::Helix;
 
-use crate::clear::{ClearPlan, Node, Path};
+use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
 use crate::geom::{Point, Segment, Tolerance};
 use crate::toolpath::{Feed, Point3, Toolpath};
@@ -218,7 +218,7 @@ impl<'a> Linker<'a> {
     fn cut(&mut self, n: usize) {
         let plan = self.plan();
         // Each entry: a part, and its children not cut yet.
-        let mut stack: Vec<(usize, Vec<usize>)> = vec![(n, plan.nodes[n].children.clone())];
+        let mut stack: Vec<(usize, Vec<usize>)> = vec![(n, plan.parts[n].children.clone())];
         while let Some((part, children)) = stack.last_mut() {
             if children.is_empty() {
                 let part = *part;
@@ -228,43 +228,43 @@ impl<'a> Linker<'a> {
             }
             let here = self.here();
             let k = nearest(children, |&c| {
-                let b = plan.nodes[c].outer.bbox();
+                let b = plan.parts[c].outer.bbox();
                 b.min.midpoint(b.max).distance(here)
             });
             let c = children.swap_remove(k);
-            stack.push((c, plan.nodes[c].children.clone()));
+            stack.push((c, plan.parts[c].children.clone()));
         }
     }
 
     /// Cuts the paths of the part `n` itself, its children being cut: clean-up paths and loops
     /// round islands nearest first, the outer loop last.
     fn cut_part(&mut self, n: usize) {
-        let node = &self.plan().nodes[n];
-        let mut items: Vec<Path> = node.cleanups.clone();
-        items.extend(node.holes.iter().map(|h| loop_path(&h.segments)));
-        let mut first = node.children.is_empty();
+        let part = &self.plan().parts[n];
+        let mut items: Vec<Path> = part.cleanups.clone();
+        items.extend(part.holes.iter().map(|h| loop_path(&h.segments)));
+        let mut first = part.children.is_empty();
         while !items.is_empty() {
             let here = self.here();
             // The outer loop goes last, at the wall of the part.
             let k = nearest(&items, |p| walk::distance_to(p, here));
             let item = items.swap_remove(k);
-            self.cut_path(node, &item, first);
+            self.cut_path(part, &item, first);
             first = false;
         }
-        self.cut_path(node, &loop_path(&node.outer.segments), first);
+        self.cut_path(part, &loop_path(&part.outer.segments), first);
     }
 
-    /// Cuts one loop or clean-up path of `node`; `enter` when the tool comes to it through
+    /// Cuts one loop or clean-up path of `part`; `enter` when the tool comes to it through
     /// uncut stock (the first path of a part with nothing inside it).
-    fn cut_path(&mut self, node: &Node, item: &Path, enter: bool) {
+    fn cut_path(&mut self, part: &Part, item: &Path, enter: bool) {
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
         let mut segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
-        if item.closed && node.level == 0 && self.plan().allowance > 0.0 {
+        if item.closed && part.level == 0 && self.plan().allowance > 0.0 {
             let (pocket, allowance) = (self.pocket(), self.plan().allowance);
             if let Some((lead_in, lead_out)) =
-                lead::leads(&segments, node.distance, allowance, pocket, self.params, self.tol)
+                lead::leads(&segments, part.distance, allowance, pocket, self.params, self.tol)
             {
                 segments.insert(0, lead_in);
                 segments.push(lead_out);
@@ -273,10 +273,10 @@ impl<'a> Linker<'a> {
         let q = segments[0].start();
         if enter || !self.down {
             self.retract();
-            self.enter(node, &segments);
-        } else if !self.stays_inside(self.here(), q, node.distance) {
+            self.enter(part, &segments);
+        } else if !self.stays_inside(self.here(), q, part.distance) {
             self.retract();
-            self.come_down_near(node, &segments);
+            self.come_down_near(part, &segments);
         } else {
             self.path.line(Point3::at(q, self.z), Feed::Cut);
         }
@@ -328,12 +328,12 @@ impl<'a> Linker<'a> {
 
     /// Back down after a retract within a part whose inside is already cut: straight down onto
     /// the nearest cut path, then across; a new entry when no such way stays inside.
-    fn come_down_near(&mut self, node: &Node, segments: &[Segment]) {
+    fn come_down_near(&mut self, part: &Part, segments: &[Segment]) {
         let plan = self.plan();
         let q = segments[0].start();
         let mut best: Option<(Point, f64)> = None;
-        for &c in &node.children {
-            let child = &plan.nodes[c];
+        for &c in &part.children {
+            let child = &plan.parts[c];
             for l in child.loops() {
                 for s in &l.segments {
                     let p = crate::geom::closest_point(s, q);
@@ -345,21 +345,21 @@ impl<'a> Linker<'a> {
             }
         }
         match best {
-            Some((p, _)) if self.stays_inside(p, q, node.distance) => {
+            Some((p, _)) if self.stays_inside(p, q, part.distance) => {
                 // The child's loop was cut at this pass's depth: down onto its floor.
                 self.descend_to(p, self.z);
                 self.path.line(Point3::at(q, self.z), Feed::Cut);
             }
-            _ => self.enter(node, segments),
+            _ => self.enter(part, segments),
         }
     }
 
-    /// A helix in the part `node` near the start of `segments`; when the part is too small,
+    /// A helix in the part `part` near the start of `segments`; when the part is too small,
     /// in the part around it, and so on outwards (still inside the pocket: no gouge).
-    fn find_helix(&self, node: &Node, segments: &[Segment]) -> Option<Helix> {
+    fn find_helix(&self, part: &Part, segments: &[Segment]) -> Option<Helix> {
         let p = self.params;
         let q = segments[0].start();
-        let mut part = Some(node);
+        let mut part = Some(part);
         let mut first = true;
         while let Some(n) = part {
             let mut samples = if first {
@@ -387,17 +387,17 @@ impl<'a> Linker<'a> {
                 return found;
             }
             first = false;
-            part = n.parent.map(|i| &self.plan().nodes[i]);
+            part = n.parent.map(|i| &self.plan().parts[i]);
         }
         None
     }
 
-    /// Enters the stock to start `segments` (a walk of `node`) at the pass depth.
-    fn enter(&mut self, node: &Node, segments: &[Segment]) {
+    /// Enters the stock to start `segments` (a walk of `part`) at the pass depth.
+    fn enter(&mut self, part: &Part, segments: &[Segment]) {
         let p = self.params;
         let q = segments[0].start();
         if p.entry == Entry::Helix {
-            if let Some(h) = self.find_helix(node, segments) {
+            if let Some(h) = self.find_helix(part, segments) {
                 // The material is outside the helix: on the right when it turns counter-clockwise.
                 let ccw = p.direction == Direction::Climb;
                 let (start, sweep) = entry::helix_start(&h, self.z_top, self.z, p.ramp_angle, ccw, q);

@@ -1,9 +1,13 @@
 //! Nesting closed contours into pockets with islands.
 //!
-//! Each contour gets a level: 0 when nothing encloses it, else one more than the deepest
-//! contour enclosing it. Material is removed where the deepest enclosing contour has an even
-//! level: level 0 bounds a pocket, level 1 an island, level 2 a pocket inside an island, and so
-//! on. Contours that cross or touch each other (overlapping islands, an island crossing the
+//! In: the closed contours the chaining stage made. Out: [`Nesting`], the pockets (each a
+//! counter-clockwise boundary with clockwise islands), the nesting depth of every contour and
+//! remarks on the contours merged or cut back.
+//!
+//! Each contour gets a nesting depth: 0 when nothing encloses it, else one more than the
+//! deepest contour enclosing it. Material is removed where the deepest enclosing contour has an
+//! even depth: depth 0 bounds a pocket, depth 1 an island, depth 2 a pocket inside an island,
+//! and so on. Contours that cross or touch each other (overlapping islands, an island crossing the
 //! wall) are cut at their intersections, and only the pieces with removed material on exactly
 //! one side are kept and stitched into loops: overlapping islands merge, and an island crossing
 //! the wall cuts the wall back. A contour that crosses itself is refused.
@@ -45,11 +49,11 @@ impl<'a> Locator<'a> {
 
 /// Pockets found in a drawing.
 #[derive(Debug, Clone, Default)]
-pub struct Regions {
+pub struct Nesting {
     /// The pockets, largest first.
     pub pockets: Vec<Pocket>,
-    /// Level of each input contour (0 = outermost).
-    pub levels: Vec<usize>,
+    /// Nesting depth of each input contour (0 = outermost).
+    pub depths: Vec<usize>,
     /// Remarks (crossing contours merged or cut back).
     pub warnings: Vec<String>,
 }
@@ -66,7 +70,7 @@ pub fn find_pockets(
     contours: &[ChainedContour],
     layer_names: &[String],
     tol: &Tolerance,
-) -> Result<Regions, ImportError> {
+) -> Result<Nesting, ImportError> {
     let mut warnings = Vec::new();
     let simple = simplified(contours, layer_names, tol, &mut warnings)?;
     let contours = &simple[..];
@@ -79,30 +83,30 @@ pub fn find_pockets(
     let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
     let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
     let contour_index = BoxIndex::new(&contour_boxes);
-    let levels = nesting_levels(
+    let depths = nesting_depths(
         contours,
         (&contour_boxes, &contour_index),
         &crossing,
         &locator,
         tol,
     );
-    meetings.report(contours, &levels, layer_names, &mut warnings);
+    meetings.report(contours, &depths, layer_names, &mut warnings);
 
-    // Deepest level of the contours enclosing p (None outside all), read as "material removed
+    // Greatest depth of the contours enclosing p (None outside all), read as "material removed
     // here" when even.
     let removed = |p: Point| {
         contour_index
             .at_point(p)
             .filter(|&c| locator.contains(c, p))
-            .map(|c| levels[c])
+            .map(|c| depths[c])
             .max()
             .is_some_and(|l| l % 2 == 0)
     };
-    let loops = meetings.loops(contours, &levels, &removed, tol, &mut warnings);
+    let loops = meetings.loops(contours, &depths, &removed, tol, &mut warnings);
     let pockets = assemble(loops, &mut warnings);
-    Ok(Regions {
+    Ok(Nesting {
         pockets,
-        levels,
+        depths,
         warnings,
     })
 }
@@ -192,19 +196,19 @@ impl Meetings {
         }
     }
 
-    /// One warning per pair of contours that meet: merged where they overlap at one level, cut
+    /// One warning per pair of contours that meet: merged where they overlap at one depth, cut
     /// back where one crosses the other.
     fn report(
         &self,
         contours: &[ChainedContour],
-        levels: &[usize],
+        depths: &[usize],
         layer_names: &[String],
         warnings: &mut Vec<String>,
     ) {
         let mut reported = HashSet::new();
         for &(a, b, p) in &self.crossings {
             if reported.insert((self.cluster[a], a.min(b), a.max(b))) {
-                let what = if levels[a] == levels[b] {
+                let what = if depths[a] == depths[b] {
                     "overlap: merged"
                 } else {
                     "cross: cut back"
@@ -225,7 +229,7 @@ impl Meetings {
     fn loops(
         &self,
         contours: &[ChainedContour],
-        levels: &[usize],
+        depths: &[usize],
         removed: &dyn Fn(Point) -> bool,
         tol: &Tolerance,
         warnings: &mut Vec<String>,
@@ -241,9 +245,9 @@ impl Meetings {
             let group = &members[&root];
             if group.len() == 1 {
                 let c = &contours[group[0]].contour;
-                // Alone, a contour bounds removed material on its inside exactly when its level
+                // Alone, a contour bounds removed material on its inside exactly when its depth
                 // is even.
-                let want_ccw = levels[group[0]] % 2 == 0;
+                let want_ccw = depths[group[0]] % 2 == 0;
                 loops.push(if c.is_ccw() == want_ccw {
                     c.clone()
                 } else {
@@ -291,14 +295,14 @@ fn samples(c: &Contour, count: usize) -> Vec<Point> {
     out
 }
 
-/// Level of each contour: 0 when none encloses it, else one more than the deepest contour
+/// Nesting depth of each contour: 0 when none encloses it, else one more than the deepest contour
 /// that encloses it.
 ///
 /// Two contours that cross enclose neither, strictly. Where a contour crosses a larger one that
-/// bounds a pocket (even level) and lies mostly inside it, it is taken as an island of that pocket
-/// crossing its wall, so the wall is cut back. Contours crossing at an odd level (islands) keep
-/// the same level and are merged.
-fn nesting_levels(
+/// bounds a pocket (even depth) and lies mostly inside it, it is taken as an island of that pocket
+/// crossing its wall, so the wall is cut back. Contours crossing at an odd depth (islands) keep
+/// the same depth and are merged.
+fn nesting_depths(
     contours: &[ChainedContour],
     (boxes, index): (&[Aabb], &BoxIndex),
     crossing: &HashSet<(usize, usize)>,
@@ -309,29 +313,29 @@ fn nesting_levels(
     let areas: Vec<f64> = contours.iter().map(|c| c.contour.signed_area().abs()).collect();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]));
-    let mut levels = vec![0usize; n];
+    let mut depths = vec![0usize; n];
     let mut done = vec![false; n];
     for &b in &order {
         let inner = &contours[b].contour;
         let probe = samples(inner, 1);
-        let mut level = 0;
+        let mut depth = 0;
         for a in index.intersecting(&boxes[b]) {
             if a == b || !done[a] {
                 continue;
             }
             let enclosed = if crossing.contains(&(a.min(b), a.max(b))) {
-                levels[a] % 2 == 0 && mostly_inside(inner, a, locator, tol)
+                depths[a] % 2 == 0 && mostly_inside(inner, a, locator, tol)
             } else {
                 boxes[a].contains_box(&boxes[b]) && probe.first().is_some_and(|&p| locator.contains(a, p))
             };
             if enclosed {
-                level = level.max(levels[a] + 1);
+                depth = depth.max(depths[a] + 1);
             }
         }
-        levels[b] = level;
+        depths[b] = depth;
         done[b] = true;
     }
-    levels
+    depths
 }
 
 /// True when at least half of `inner`'s length (sampled, ignoring points on `outer`) lies
