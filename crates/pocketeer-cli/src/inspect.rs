@@ -82,7 +82,7 @@ fn suggest_tolerance(gap: f64) -> String {
 pub fn import_warnings(a: &Analysis) -> Vec<String> {
     let d = &a.drawing;
     let layer_name = |i: usize| d.layers.get(i).cloned().unwrap_or_default();
-    let mut warnings = d.warnings.clone();
+    let mut warnings: Vec<String> = d.warnings.iter().map(ToString::to_string).collect();
     let ch = &a.chains;
     if ch.duplicates_dropped > 0 {
         warnings.push(format!(
@@ -100,7 +100,7 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
             )
         ));
     }
-    warnings.extend(ch.warnings.iter().cloned());
+    warnings.extend(ch.warnings.iter().map(ToString::to_string));
     for o in &ch.open {
         let hint = match o.nearest_gap {
             Some(g) if g <= 0.1 => format!(
@@ -118,7 +118,7 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
             o.end
         ));
     }
-    warnings.extend(a.nesting.warnings.iter().cloned());
+    warnings.extend(a.nesting.warnings.iter().map(ToString::to_string));
     warnings
 }
 

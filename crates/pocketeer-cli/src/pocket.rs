@@ -379,7 +379,9 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
     output::write_output(&args.output, program.as_bytes()).map_err(Failure)?;
-    let mut after: Vec<String> = job.linked.warnings.clone();
+    let mut after: Vec<String> = (job.linked.warnings.iter().map(ToString::to_string))
+        .chain(job.warnings.iter().map(ToString::to_string))
+        .collect();
     after.extend(crate::sanity::time_warning(&analysis, figures.seconds));
     crate::print_warnings(&after);
     let u = s.units;

@@ -2,9 +2,9 @@
 //! path.
 
 use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
-use crate::geom::Pocket;
 use crate::geom::PreparedPocket;
 use crate::geom::Tolerance;
+use crate::geom::{Pocket, Point};
 use crate::link::{link, LinkError, LinkParams, Linked};
 use thiserror::Error;
 
@@ -35,8 +35,25 @@ pub enum JobError {
 pub struct Job {
     /// The clearing plan of each pocket (empty where the tool fits nowhere).
     pub plans: Vec<ClearPlan>,
-    /// The tool path and remarks.
+    /// The tool path and the linker's remarks.
     pub linked: Linked,
+    /// The job's own remarks: pockets left uncut.
+    pub warnings: Vec<JobWarning>,
+}
+
+/// Something about a planned job the machinist should know.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum JobWarning {
+    /// The tool fits nowhere in this pocket (others are cut).
+    #[error("pocket {} (area {area:.3} mm², near {near}) is too narrow for the tool: not cut", .pocket + 1)]
+    TooNarrow {
+        /// Which pocket (0-based).
+        pocket: usize,
+        /// Its area, mm².
+        area: f64,
+        /// A point of its boundary.
+        near: Point,
+    },
 }
 
 /// Plans and links `pockets`.
@@ -64,18 +81,20 @@ pub fn pocket_job(
         .zip(&plans)
         .filter(|(_, p)| !p.parts.is_empty())
         .collect();
-    let mut linked = link(&jobs, link_params, tol)?;
-    for (i, p) in plans.iter().enumerate() {
-        if p.parts.is_empty() {
-            linked.warnings.push(format!(
-                "pocket {} (area {:.3} mm², near {}) is too narrow for the tool: not cut",
-                i + 1,
-                pockets[i].area(),
-                pockets[i].boundary.segments[0].start()
-            ));
-        }
-    }
-    Ok(Job { plans, linked })
+    let linked = link(&jobs, link_params, tol)?;
+    let warnings = (plans.iter().zip(pockets).enumerate())
+        .filter(|(_, (plan, _))| plan.parts.is_empty())
+        .map(|(i, (_, p))| JobWarning::TooNarrow {
+            pocket: i,
+            area: p.area(),
+            near: p.boundary.segments[0].start(),
+        })
+        .collect();
+    Ok(Job {
+        plans,
+        linked,
+        warnings,
+    })
 }
 
 /// The radius of the largest circle in any of the pockets.

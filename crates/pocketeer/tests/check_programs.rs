@@ -5,7 +5,7 @@ mod common;
 
 use pocketeer::geom::Pocket;
 use pocketeer::geom::{Arc, Contour, Point, Segment, Tolerance};
-use pocketeer::link::Entry;
+use pocketeer::link::{Entry, LinkWarning};
 use pocketeer::post::{write_gcode, Dialect};
 use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
 
@@ -35,7 +35,7 @@ fn our_program(pocket: &Pocket, stepover: f64) -> String {
 }
 
 /// Our program and the warnings the job gave (plunges where no helix or ramp fits).
-fn our_program_and_warnings(pocket: &Pocket, stepover: f64) -> (String, Vec<String>) {
+fn our_program_and_warnings(pocket: &Pocket, stepover: f64) -> (String, Vec<LinkWarning>) {
     common::program::our_program(
         std::slice::from_ref(pocket),
         6.0,
@@ -216,7 +216,7 @@ mod random {
             prop_assert!(r.passed, "gouge {} thickest {}", r.gouge, r.thickest);
             // Plunges only where the job said no helix or ramp fits (a part barely wider than
             // the tool, cut off by a neck), once per depth pass.
-            let announced = warnings.iter().filter(|w| w.contains("plunging")).count();
+            let announced = warnings.iter().filter(|w| matches!(w, LinkWarning::Plunged { .. })).count();
             prop_assert!(
                 r.rapids_into_stock.is_empty() && r.plunges.len() <= announced && r.feedless.is_empty(),
                 "rapids {:?} plunges {:?} feedless {:?}",

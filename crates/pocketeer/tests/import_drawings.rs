@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use pocketeer::import::{ImportError, Units};
+use pocketeer::import::{ImportError, ImportWarning, Units};
 use pocketeer::{analyze, Analysis, ImportOptions};
 use std::f64::consts::PI;
 
@@ -191,7 +191,11 @@ fn overlapping_islands_merge_into_one() {
         p[0].0,
         6000.0 - union
     );
-    assert!(a.nesting.warnings.iter().any(|w| w.contains("merged")));
+    assert!(a
+        .nesting
+        .warnings
+        .iter()
+        .any(|w| matches!(w, ImportWarning::ContoursMeet { merged: true, .. })));
 }
 
 #[test]
@@ -220,7 +224,11 @@ fn an_island_crossing_the_wall_cuts_the_pocket_back() {
     let (r, h) = (10.0f64, 3.0f64);
     let outside = r * r * (h / r).acos() - h * (r * r - h * h).sqrt();
     assert!(close(p[0].0, 6000.0 - (PI * r * r - outside), 1e-6), "{p:?}");
-    assert!(a.nesting.warnings.iter().any(|w| w.contains("cut back")));
+    assert!(a
+        .nesting
+        .warnings
+        .iter()
+        .any(|w| matches!(w, ImportWarning::ContoursMeet { merged: false, .. })));
 }
 
 #[test]
@@ -596,7 +604,11 @@ fn a_closed_polyline_without_area_is_not_a_contour() {
         rect_poly("0", 20.0, 0.0, 30.0, 10.0),
     ]));
     assert_eq!(a.chains.contours.len(), 1);
-    assert!(a.chains.warnings.iter().any(|w| w.contains("encloses no area")));
+    assert!(a
+        .chains
+        .warnings
+        .iter()
+        .any(|w| matches!(w, ImportWarning::NoArea { elements: 2, .. })));
 }
 
 #[test]

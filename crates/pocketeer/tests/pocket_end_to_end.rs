@@ -20,7 +20,7 @@ struct Outcome {
     tested: usize,
     deepest: f64,
     rapids_below_top: usize,
-    warnings: Vec<String>,
+    warnings: Vec<pocketeer::link::LinkWarning>,
 }
 
 fn run(

@@ -8,6 +8,7 @@
 use super::nodes::Nodes;
 use super::Element;
 use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
+use crate::import::ImportWarning;
 use std::collections::{HashMap, HashSet};
 
 /// A closed contour found by chaining.
@@ -53,7 +54,7 @@ pub struct Chains {
     /// The largest distance an end point was moved to join its node.
     pub largest_gap: f64,
     /// Remarks (branches, closed gaps).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ImportWarning>,
 }
 
 /// End `0` (start) or `1` (end) of an element.
@@ -71,12 +72,11 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
     out.gaps_closed = nodes.gaps_closed;
     out.largest_gap = nodes.largest_gap;
     if nodes.gaps_closed > 0 {
-        out.warnings.push(format!(
-            "{} between end points closed, the largest {:.6} mm at {}",
-            crate::import::error::fmt_count(nodes.gaps_closed, "gap", "gaps"),
-            nodes.largest_gap,
-            nodes.largest_gap_at
-        ));
+        out.warnings.push(ImportWarning::GapsClosed {
+            count: nodes.gaps_closed,
+            largest: nodes.largest_gap,
+            at: nodes.largest_gap_at,
+        });
     }
     // An element whose ends fall into one node has no length worth keeping, unless it is long
     // (an arc of almost 360°), which closes on itself.
@@ -125,11 +125,10 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
         let contour = Contour::new(close_ring(segs));
         if contour.signed_area().abs() <= tol.join * length && runs_back_over_itself(&contour.segments, tol) {
             // Drawn there and back again: a line, not an outline.
-            out.warnings.push(format!(
-                "a closed polyline of {} at {} encloses no area; ignored",
-                crate::import::error::fmt_count(members.len(), "element", "elements"),
-                contour.segments[0].start()
-            ));
+            out.warnings.push(ImportWarning::NoArea {
+                elements: members.len(),
+                at: contour.segments[0].start(),
+            });
             continue;
         }
         out.contours.push(ChainedContour {
@@ -345,7 +344,7 @@ fn pair_ends(
     elements: &[Element],
     alive: &[bool],
     nodes: &Nodes,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ImportWarning>,
 ) -> HashMap<End, End> {
     let mut at_node: Vec<Vec<End>> = vec![Vec::new(); nodes.pos.len()];
     for (i, e) in elements.iter().enumerate() {
@@ -373,11 +372,10 @@ fn pair_ends(
             continue;
         }
         if ends.len() % 2 == 1 {
-            warnings.push(format!(
-                "{} elements end at {}: one of them is left open",
-                ends.len(),
-                nodes.pos[id]
-            ));
+            warnings.push(ImportWarning::OddJunction {
+                ends: ends.len(),
+                at: nodes.pos[id],
+            });
         }
         // Direction leaving the node along each element.
         let angle = |&(i, end): &End| {

@@ -6,6 +6,7 @@ use super::dxf::{Document, Group, RawEntity};
 use super::entities::{curves_of, Drawn};
 use super::error::{EntityRef, ImportError};
 use crate::geom::Vector;
+use crate::import::ImportWarning;
 
 /// Deepest block nesting followed.
 const MAX_NESTING: usize = 64;
@@ -31,7 +32,7 @@ pub struct Expander<'a> {
     /// Curves found.
     pub placed: Vec<Placed>,
     /// Remarks (unknown blocks).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ImportWarning>,
     stack: Vec<String>,
     groups: usize,
     /// Entities each block expands to (memo of [`Expander::expanded_size`]).
@@ -122,10 +123,10 @@ impl<'a> Expander<'a> {
         let int = |code: i32, default: i64| e.group(code).and_then(Group::int).unwrap_or(default);
         let name = e.text(2).unwrap_or_default().trim().to_owned();
         let Some(block) = self.doc.blocks.get(&name.to_uppercase()) else {
-            self.warnings.push(format!(
-                "{}: block '{name}' is not defined; ignored",
-                e.reference(layer)
-            ));
+            self.warnings.push(ImportWarning::UndefinedBlock {
+                insert: e.reference(layer),
+                name,
+            });
             return Ok(());
         };
         if self.stack.iter().any(|s| s.eq_ignore_ascii_case(&name)) || self.stack.len() >= MAX_NESTING {
@@ -139,12 +140,11 @@ impl<'a> Expander<'a> {
         }
         let (sx, sy) = (real(41, 1.0), real(42, 1.0));
         if !(sx.is_finite() && sy.is_finite() && sx != 0.0 && sy != 0.0) {
-            self.warnings.push(format!(
-                "{}: block '{name}' inserted with scale {} × {}: nothing to draw; ignored",
-                e.reference(layer),
-                super::error::fmt_number(sx),
-                super::error::fmt_number(sy)
-            ));
+            self.warnings.push(ImportWarning::BlockScaledToNothing {
+                insert: e.reference(layer),
+                name,
+                scale: (sx, sy),
+            });
             return Ok(());
         }
         let rotation = real(50, 0.0).to_radians();

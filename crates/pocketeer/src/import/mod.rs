@@ -1,6 +1,6 @@
 //! From DXF bytes to pockets: reading ([`dxf`]), block expansion, curves to exact lines and arcs,
-//! chaining into closed contours ([`mod@chain`]), and nesting into pockets with islands ([`region`]);
-//! [`analyze`] does it all.
+//! chaining into closed contours ([`mod@chain`]), and nesting into pockets with islands ([`nesting`]);
+//! [`analyze`] does it all. What it repaired or left out on the way is an [`ImportWarning`].
 
 mod analysis;
 pub mod biarc;
@@ -14,12 +14,14 @@ pub mod nesting;
 mod nodes;
 pub mod self_crossing;
 pub mod units;
+mod warning;
 
 pub use analysis::{analyze, Analysis};
 pub use chain::{chain, ChainedContour, Chains, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
 pub use nesting::{find_pockets, Nesting};
 pub use units::Units;
+pub use warning::ImportWarning;
 
 use crate::geom::{Aabb, Segment, Tolerance, DEFAULT_JOIN_TOLERANCE};
 use curve::Affine;
@@ -89,7 +91,7 @@ pub struct Drawing {
     /// Bounding box of the elements.
     pub extent: Aabb,
     /// Remarks about the file.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ImportWarning>,
     /// True for a binary DXF.
     pub binary: bool,
 }
@@ -145,7 +147,7 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
 fn drawing_units(
     doc: &dxf::Document,
     options: &ImportOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ImportWarning>,
 ) -> (Option<Units>, Units) {
     let declared_units = doc
         .header_value("$INSUNITS")
@@ -154,11 +156,10 @@ fn drawing_units(
     let units = options.units.or(declared_units).unwrap_or(Units::Millimeters);
     if let (Some(d), Some(o)) = (declared_units, options.units) {
         if d != o {
-            warnings.push(format!(
-                "the drawing declares {}; read in {} as asked",
-                d.name(),
-                o.name()
-            ));
+            warnings.push(ImportWarning::UnitsOverridden {
+                declared: d,
+                read_as: o,
+            });
         }
     }
     (declared_units, units)
@@ -170,7 +171,7 @@ fn layer_names(
     doc: &dxf::Document,
     placed: &[expand::Placed],
     options: &ImportOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ImportWarning>,
 ) -> Vec<String> {
     let mut layers = doc.layers.clone();
     for p in placed {
@@ -181,10 +182,10 @@ fn layer_names(
     if let Some(wanted) = &options.layers {
         for w in wanted {
             if !layers.iter().any(|l| l.eq_ignore_ascii_case(w)) {
-                warnings.push(format!(
-                    "layer '{w}' is not in the drawing (layers: {})",
-                    layers.join(", ")
-                ));
+                warnings.push(ImportWarning::LayerNotInDrawing {
+                    layer: w.clone(),
+                    layers: layers.clone(),
+                });
             }
         }
     }

@@ -19,6 +19,7 @@ use crate::geom::{
     cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
     Segment, Tolerance, WindingIndex,
 };
+use crate::import::ImportWarning;
 use crate::union_find::UnionFind;
 use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
@@ -55,7 +56,7 @@ pub struct Nesting {
     /// Nesting depth of each input contour (0 = outermost).
     pub depths: Vec<usize>,
     /// Remarks (crossing contours merged or cut back).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ImportWarning>,
 }
 
 /// Where one segment of one contour is.
@@ -117,7 +118,7 @@ fn simplified(
     contours: &[ChainedContour],
     layer_names: &[String],
     tol: &Tolerance,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ImportWarning>,
 ) -> Result<Vec<ChainedContour>, ImportError> {
     let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
     let mut simple = Vec::with_capacity(contours.len());
@@ -127,11 +128,10 @@ fn simplified(
             point: x.point,
         })?;
         for p in removed {
-            warnings.push(format!(
-                "a sliver loop where the contour on layer '{}' crosses itself at {} removed",
-                layer_name(c),
-                p
-            ));
+            warnings.push(ImportWarning::SliverLoopRemoved {
+                layer: layer_name(c),
+                at: p,
+            });
         }
         simple.push(ChainedContour { contour, ..c.clone() });
     }
@@ -203,22 +203,22 @@ impl Meetings {
         contours: &[ChainedContour],
         depths: &[usize],
         layer_names: &[String],
-        warnings: &mut Vec<String>,
+        warnings: &mut Vec<ImportWarning>,
     ) {
         let mut reported = HashSet::new();
         for &(a, b, p) in &self.crossings {
             if reported.insert((self.cluster[a], a.min(b), a.max(b))) {
-                let what = if depths[a] == depths[b] {
-                    "overlap: merged"
-                } else {
-                    "cross: cut back"
+                let layer = |c: usize| {
+                    layer_names
+                        .get(contours[c].layer)
+                        .cloned()
+                        .unwrap_or_else(|| "?".into())
                 };
-                warnings.push(format!(
-                    "contours on layers '{}' and '{}' meet at {}; they {what}",
-                    layer_names.get(contours[a].layer).map_or("?", |s| s.as_str()),
-                    layer_names.get(contours[b].layer).map_or("?", |s| s.as_str()),
-                    p
-                ));
+                warnings.push(ImportWarning::ContoursMeet {
+                    layers: [layer(a), layer(b)],
+                    at: p,
+                    merged: depths[a] == depths[b],
+                });
             }
         }
     }
@@ -232,7 +232,7 @@ impl Meetings {
         depths: &[usize],
         removed: &dyn Fn(Point) -> bool,
         tol: &Tolerance,
-        warnings: &mut Vec<String>,
+        warnings: &mut Vec<ImportWarning>,
     ) -> Vec<Contour> {
         let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
         for (c, &root) in self.cluster.iter().enumerate() {
@@ -258,10 +258,7 @@ impl Meetings {
             let pieces = boundary_pieces(contours, group, &self.cuts, removed, tol);
             let (stitched, lost) = stitch(pieces, tol);
             if lost > 0 {
-                warnings.push(format!(
-                    "{} of crossing contours could not be joined into loops and were left out",
-                    crate::import::error::fmt_count(lost, "piece", "pieces")
-                ));
+                warnings.push(ImportWarning::PiecesLost { pieces: lost });
             }
             loops.extend(stitched);
         }
@@ -454,7 +451,7 @@ fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
 
 /// Groups loops into pockets: each clockwise loop goes to the smallest counter-clockwise loop
 /// around it.
-fn assemble(loops: Vec<Contour>, warnings: &mut Vec<String>) -> Vec<Pocket> {
+fn assemble(loops: Vec<Contour>, warnings: &mut Vec<ImportWarning>) -> Vec<Pocket> {
     let (outer, holes): (Vec<Contour>, Vec<Contour>) = loops.into_iter().partition(Contour::is_ccw);
     let mut pockets: Vec<Pocket> = outer
         .into_iter()
@@ -489,7 +486,7 @@ fn assemble(loops: Vec<Contour>, warnings: &mut Vec<String>) -> Vec<Pocket> {
             Some(k) => pockets[k].islands.push(hole),
             None => {
                 let at = hole.segments.first().map(|s| s.start()).unwrap_or_default();
-                warnings.push(format!("an island at {} lies in no pocket; ignored", at));
+                warnings.push(ImportWarning::IslandInNoPocket { at });
             }
         }
     }

@@ -127,7 +127,20 @@ pub struct Linked {
     /// The moves.
     pub toolpath: Toolpath,
     /// Remarks, such as plunges where nothing else fitted.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<LinkWarning>,
+}
+
+/// Something about a linked tool path the machinist should know.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LinkWarning {
+    /// Neither a helix nor a ramp fits where a part is entered: the tool plunges straight down.
+    #[error("no room for a helix or a ramp at ({:.3}, {:.3}): plunging straight down to Z{z:.3}", .at.x, .at.y)]
+    Plunged {
+        /// Where, mm.
+        at: Point,
+        /// The depth plunged to, mm.
+        z: f64,
+    },
 }
 
 /// The Z of each depth pass: equal passes of at most `step_down`, the last at `-depth`.
@@ -186,7 +199,7 @@ struct Linker<'a> {
     params: &'a LinkParams,
     tol: &'a Tolerance,
     path: Toolpath,
-    warnings: Vec<String>,
+    warnings: Vec<LinkWarning>,
     pocket: Option<&'a PreparedPocket>,
     plan: Option<&'a ClearPlan>,
     /// Depth of the current pass.
@@ -428,10 +441,7 @@ impl<'a> Linker<'a> {
             return;
         }
         if p.entry != Entry::Plunge {
-            self.warnings.push(format!(
-                "no room for a helix or a ramp at ({:.3}, {:.3}): plunging straight down to Z{:.3}",
-                q.x, q.y, self.z
-            ));
+            self.warnings.push(LinkWarning::Plunged { at: q, z: self.z });
         }
         self.descend_to_floor(q);
         self.path.line(Point3::at(q, self.z), Feed::Plunge);

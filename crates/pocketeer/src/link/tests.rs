@@ -144,7 +144,7 @@ fn a_pocket_barely_wider_than_the_tool_is_plunged_with_a_warning() {
     };
     let (l, _) = linked(&pocket, 2.0, Entry::Helix);
     assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
-    assert!(l.warnings[0].contains("plunging"));
+    assert!(matches!(l.warnings[0], LinkWarning::Plunged { .. }));
     let (l, _) = linked(&pocket, 2.0, Entry::Plunge);
     assert!(l.warnings.is_empty());
 }

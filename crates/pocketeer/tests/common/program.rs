@@ -28,7 +28,7 @@ pub fn our_program(
     depth: f64,
     entry: Entry,
     dialect: Dialect,
-) -> (String, Vec<String>) {
+) -> (String, Vec<pocketeer::link::LinkWarning>) {
     let r = 0.5 * diameter;
     let clear = ClearParams {
         tool_radius: r,

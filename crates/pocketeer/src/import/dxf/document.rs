@@ -6,6 +6,7 @@
 
 use super::tokens::{Group, Groups, Value};
 use crate::import::error::{EntityRef, ImportError, Pos};
+use crate::import::ImportWarning;
 use std::collections::HashMap;
 
 /// One entity as read: its type, its groups, and (for POLYLINE) its vertices.
@@ -79,7 +80,7 @@ pub struct Document {
     /// Entities of the ENTITIES section(s), model and paper space.
     pub entities: Vec<RawEntity>,
     /// Remarks about the file's structure.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ImportWarning>,
 }
 
 impl Document {
@@ -171,9 +172,8 @@ pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
                     section: name,
                 });
             }
-            doc.warnings.push(format!(
-                "the {name} section has no end; the file may be truncated"
-            ));
+            doc.warnings
+                .push(ImportWarning::SectionNotEnded { section: name });
         }
     }
     if !saw_section {
@@ -182,7 +182,7 @@ pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
         ));
     }
     if !saw_eof {
-        doc.warnings.push("the file has no EOF marker".into());
+        doc.warnings.push(ImportWarning::NoEofMarker);
     }
     Ok(doc)
 }

@@ -1,0 +1,125 @@
+//! What the importer met, repaired or left out: typed remarks with their numbers and places,
+//! which a front end formats (their `Display` is a one-line message).
+
+use super::error::{fmt_count, fmt_number, EntityRef};
+use super::Units;
+use crate::geom::Point;
+use thiserror::Error;
+
+/// One remark of the importer. The drawing was read; this says what was changed or ignored
+/// on the way, and where.
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// use pocketeer::import::ImportWarning;
+/// let w = ImportWarning::GapsClosed { count: 3, largest: 0.0004, at: Point::new(10.0, 5.0) };
+/// assert_eq!(w.to_string(), "3 gaps between end points closed, the largest 0.000400 mm at (10.0000, 5.0000)");
+/// ```
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ImportWarning {
+    /// A section other than ENTITIES or BLOCKS runs to the end of the file.
+    #[error("the {section} section has no end; the file may be truncated")]
+    SectionNotEnded {
+        /// The section's name.
+        section: String,
+    },
+    /// The file ends without an EOF marker.
+    #[error("the file has no EOF marker")]
+    NoEofMarker,
+    /// The drawing declares one unit and was read in another, as asked.
+    #[error("the drawing declares {}; read in {} as asked", .declared.name(), .read_as.name())]
+    UnitsOverridden {
+        /// The unit the header declares.
+        declared: Units,
+        /// The unit the drawing was read in.
+        read_as: Units,
+    },
+    /// A layer asked for is not in the drawing.
+    #[error("layer '{layer}' is not in the drawing (layers: {})", .layers.join(", "))]
+    LayerNotInDrawing {
+        /// The layer asked for.
+        layer: String,
+        /// Every layer the drawing has.
+        layers: Vec<String>,
+    },
+    /// An INSERT names a block the file does not define.
+    #[error("{insert}: block '{name}' is not defined; ignored")]
+    UndefinedBlock {
+        /// The INSERT.
+        insert: EntityRef,
+        /// The block's name.
+        name: String,
+    },
+    /// An INSERT scales its block to nothing (or to an infinite size).
+    #[error("{insert}: block '{name}' inserted with scale {} × {}: nothing to draw; ignored",
+        fmt_number(.scale.0), fmt_number(.scale.1))]
+    BlockScaledToNothing {
+        /// The INSERT.
+        insert: EntityRef,
+        /// The block's name.
+        name: String,
+        /// Its x and y scale.
+        scale: (f64, f64),
+    },
+    /// End points that did not coincide exactly were joined.
+    #[error("{} between end points closed, the largest {largest:.6} mm at {at}",
+        fmt_count(*.count, "gap", "gaps"))]
+    GapsClosed {
+        /// Nodes where ends were moved to meet.
+        count: usize,
+        /// The largest distance an end was moved, mm.
+        largest: f64,
+        /// Where that was.
+        at: Point,
+    },
+    /// A closed polyline drawn there and back again: a line, no outline.
+    #[error("a closed polyline of {} at {at} encloses no area; ignored",
+        fmt_count(*.elements, "element", "elements"))]
+    NoArea {
+        /// Its elements.
+        elements: usize,
+        /// Its first point.
+        at: Point,
+    },
+    /// An odd number (three or more) of elements end at one point: one is left open.
+    #[error("{ends} elements end at {at}: one of them is left open")]
+    OddJunction {
+        /// How many end there.
+        ends: usize,
+        /// The point.
+        at: Point,
+    },
+    /// A contour crossed itself in a loop too thin to matter, and the loop was cut off.
+    #[error("a sliver loop where the contour on layer '{layer}' crosses itself at {at} removed")]
+    SliverLoopRemoved {
+        /// The contour's layer.
+        layer: String,
+        /// Where it crosses itself.
+        at: Point,
+    },
+    /// Two contours meet: overlapping ones at the same nesting depth are merged, a contour
+    /// crossing the wall of the pocket around it cuts the wall back.
+    #[error("contours on layers '{}' and '{}' meet at {at}; they {}", .layers[0], .layers[1],
+        if *.merged { "overlap: merged" } else { "cross: cut back" })]
+    ContoursMeet {
+        /// The two contours' layers.
+        layers: [String; 2],
+        /// A point where they meet.
+        at: Point,
+        /// True when merged, false when the outer one was cut back.
+        merged: bool,
+    },
+    /// Pieces of crossing contours that could not be joined into loops.
+    #[error("{} of crossing contours could not be joined into loops and were left out",
+        fmt_count(*.pieces, "piece", "pieces"))]
+    PiecesLost {
+        /// How many.
+        pieces: usize,
+    },
+    /// A clockwise loop that no pocket encloses.
+    #[error("an island at {at} lies in no pocket; ignored")]
+    IslandInNoPocket {
+        /// Its first point.
+        at: Point,
+    },
+}
