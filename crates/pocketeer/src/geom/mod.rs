@@ -28,6 +28,6 @@ pub use pocket::Pocket;
 pub use point::{Point, Vector};
 pub use prepared::PreparedPocket;
 pub use segment::Segment;
-pub use stitch::{cluster_points, stitch, Piece};
+pub use stitch::{cluster_points, stitch, Piece, Source};
 pub(crate) use stitch::{stitch_kept, PieceGraph};
 pub use tolerance::{offset_slack, Tolerance, DEFAULT_JOIN_TOLERANCE, JOIN_SLACK, NEAR_REVERSAL, TOUCH};

@@ -18,19 +18,55 @@ pub struct Piece {
     pub start: usize,
     /// Node at the end.
     pub end: usize,
-    /// What made the piece, as the caller numbers it (the offset stage: which original
-    /// element or joint); 0 when unused.
-    pub source: u32,
+    /// What made the piece.
+    pub source: Source,
+}
+
+/// What made a [`Piece`]: an element of the profile (numbered among all elements worked on
+/// together; for a caller that does not offset, whatever the caller numbers) or the joint at
+/// the end of element k, where it meets the next one.
+///
+/// ```
+/// use pocketeer::geom::Source;
+/// // Two elements and their two joints in one table: elements first, then joints.
+/// assert_eq!(Source::Element(1).index(2), 1);
+/// assert_eq!(Source::Joint(1).index(2), 3);
+/// assert_eq!(Source::Joint(1).element(), 1);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Source {
+    /// The element k, moved by the offset distance.
+    Element(u32),
+    /// The joint at the end of element k: the arc or chord closing the gap between the moved
+    /// element k and the next.
+    Joint(u32),
+}
+
+impl Source {
+    /// The element: the piece's own, or the one at whose end the joint lies.
+    pub fn element(self) -> u32 {
+        match self {
+            Source::Element(k) | Source::Joint(k) => k,
+        }
+    }
+
+    /// Position in a table of `elements` elements followed by as many joints.
+    pub fn index(self, elements: usize) -> usize {
+        match self {
+            Source::Element(k) => k as usize,
+            Source::Joint(k) => elements + k as usize,
+        }
+    }
 }
 
 /// The closed loops the pieces form, and how many pieces could not be closed into one.
 ///
 /// ```
-/// use pocketeer::geom::{stitch, Line, Piece, Point, Segment};
+/// use pocketeer::geom::{stitch, Line, Piece, Point, Segment, Source};
 /// let p = |x, y| Point::new(x, y);
 /// let corners = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
 /// let pieces: Vec<Piece> = (0..4)
-///     .map(|k| Piece { segment: Segment::Line(Line::new(corners[k], corners[(k + 1) % 4])), start: k, end: (k + 1) % 4, source: 0 })
+///     .map(|k| Piece { segment: Segment::Line(Line::new(corners[k], corners[(k + 1) % 4])), start: k, end: (k + 1) % 4, source: Source::Element(k as u32) })
 ///     .collect();
 /// let (loops, lost) = stitch(&pieces);
 /// assert_eq!((loops.len(), lost), (1, 0));
@@ -219,7 +255,7 @@ mod tests {
                     segment: Segment::Line(Line::new(p, q)),
                     start: a,
                     end: b,
-                    source: 0,
+                    source: Source::Element(k as u32),
                 }
             })
             .collect()

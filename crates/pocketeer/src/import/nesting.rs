@@ -15,6 +15,7 @@
 use super::chain::ChainedContour;
 use super::error::ImportError;
 use super::self_crossing::make_simple;
+use crate::geom::Source;
 use crate::geom::{
     cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
     Segment, Tolerance, WindingIndex,
@@ -443,7 +444,7 @@ fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
             segment,
             start: node[2 * i],
             end: node[2 * i + 1],
-            source: 0,
+            source: Source::Element(i as u32),
         })
         .collect();
     crate::geom::stitch(&pieces)

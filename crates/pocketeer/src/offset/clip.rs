@@ -98,7 +98,7 @@ fn keep_spans(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Contour, Line, Point, Segment};
+    use crate::geom::{Contour, Line, Point, Segment, Source};
 
     #[test]
     fn the_part_near_the_profile_goes_and_the_rest_keeps_its_ends() {
@@ -110,13 +110,13 @@ mod tests {
             segment: Segment::Line(Line::new(p(-20.0, -1.0), p(20.0, -1.0))),
             start: 0,
             end: 1,
-            source: 7,
+            source: Source::Joint(7),
         };
         let mut nodes = Nodes::new(2);
         let kept = clip_invalid(&[piece], &walls, 2.0, 0.0, &mut nodes).unwrap();
         assert_eq!(kept.len(), 2);
         assert_eq!((kept[0].start, kept[1].end), (0, 1));
-        assert!(kept.iter().all(|k| k.source == 7));
+        assert!(kept.iter().all(|k| k.source == Source::Joint(7)));
         // Invalid (nearer than 2) exactly for -√3 < x < 10 + √3: what went lies inside that,
         // and most of it went.
         let cut0 = kept[0].segment.end().x;

@@ -40,7 +40,9 @@ mod split;
 pub(crate) use levels::offsets_until_empty;
 
 use crate::geom::Pocket;
-use crate::geom::{stitch_kept, Contour, Piece, PieceGraph, Point, PreparedPocket, SegmentIndex, Tolerance};
+use crate::geom::{
+    stitch_kept, Contour, Piece, PieceGraph, Point, PreparedPocket, SegmentIndex, Source, Tolerance,
+};
 use prune::{cancel_opposites, prune, remove_dangling};
 use split::{split, Nodes};
 use thiserror::Error;
@@ -194,7 +196,7 @@ impl PreparedPocket {
 /// Which elements and joints of a region gave pieces to one of its offsets.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sources {
-    /// Indexed like the pieces' `source` (elements, then joints); `None`: all of them.
+    /// Indexed by [`Source::index`] (elements, then joints); `None`: all of them.
     used: Option<Vec<bool>>,
 }
 
@@ -203,10 +205,12 @@ impl Sources {
         Sources { used: None }
     }
 
-    fn has(&self, k: u32) -> bool {
+    /// True when `source` gave pieces (or when all did). The table holds the elements, then
+    /// their joints.
+    fn has(&self, source: Source) -> bool {
         self.used
             .as_ref()
-            .is_none_or(|u| u.get(k as usize).copied().unwrap_or(true))
+            .is_none_or(|u| u.get(source.index(u.len() / 2)).copied().unwrap_or(true))
     }
 
     /// How many were used (of how many), for reports and tests.
@@ -298,9 +302,9 @@ fn erode(
     let elements: usize = contours.iter().map(|c| c.segments.len()).sum();
     let mut raw: Vec<Piece> = Vec::new();
     let (mut next_node, mut base) = (0, 0);
-    let wanted = |source: u32| smaller.is_none_or(|s| s.has(source));
+    let wanted = |source: Source| smaller.is_none_or(|s| s.has(source));
     for c in contours {
-        let (pieces, next) = raw::raw_offset(c, d, tol, next_node, (base, elements), &wanted);
+        let (pieces, next) = raw::raw_offset(c, d, tol, next_node, base, &wanted);
         if raw.is_empty() {
             raw = pieces;
         } else {
@@ -318,7 +322,7 @@ fn erode(
         MAX_BOX_TESTS,
         MAX_CROSSINGS.min(QUADRATIC_CROSSINGS * raw.len() + 100_000),
     );
-    let pieces = match split(&raw, &mut nodes, tol, first_budget, elements) {
+    let pieces = match split(&raw, &mut nodes, tol, first_budget) {
         Ok(pieces) => pieces,
         Err(first) => {
             // Too many crossings: most lie in parts of pieces that are invalid anyway.
@@ -335,7 +339,7 @@ fn erode(
             };
             let clipped = clip::clip_invalid(&raw, walls, d, prune::slack(d, tol), &mut nodes)
                 .ok_or_else(|| too_complex(&raw, first))?;
-            split(&clipped, &mut nodes, tol, budget, elements).map_err(|o| too_complex(&clipped, o))?
+            split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
     };
     // Canonical node ids; pieces shorter than rounding go (their ends are one node).
@@ -349,12 +353,12 @@ fn erode(
         })
         .collect();
     let graph = PieceGraph::new(&pieces);
-    // Joining lines: the joint at the end of element k is the source `elements + k`. (When
+    // Joining lines: the joint at the end of element k is the source `Joint(k)`. (When
     // growing a region the contours are the profile's reversed, so the element this names is
     // not the profile's element k: a hint that misses, and costs one measure.)
-    let join_at = |p: &Piece| {
-        let joint = (p.source as usize).checked_sub(elements)?;
-        matches!(p.segment, crate::geom::Segment::Line(_)).then_some(joint)
+    let join_at = |p: &Piece| match (p.source, p.segment) {
+        (Source::Joint(k), crate::geom::Segment::Line(_)) => Some(k as usize),
+        _ => None,
     };
     let mut kept =
         prune(&pieces, &graph, walls, inside, &join_at, d, tol).map_err(|near| OffsetError::TooComplex {
@@ -369,7 +373,7 @@ fn erode(
     remove_dangling(&pieces, &graph, &mut kept);
     let mut used = vec![false; 2 * elements];
     for (p, _) in pieces.iter().zip(&kept).filter(|(_, &k)| k) {
-        if let Some(u) = used.get_mut(p.source as usize) {
+        if let Some(u) = used.get_mut(p.source.index(elements)) {
             *u = true;
         }
     }

@@ -1,6 +1,7 @@
 //! Raw offset (paper §4): every line moved sideways by d, every arc's radius changed by d, and
 //! an arc of radius d around every joint where the moved elements part.
 
+use crate::geom::Source;
 use crate::geom::NEAR_REVERSAL;
 use crate::geom::{intersect, Arc, Contour, Intersection, Line, Piece, Segment, Tolerance};
 use std::f64::consts::PI;
@@ -9,9 +10,9 @@ use std::f64::consts::PI;
 /// on), as a closed ring of pieces whose node ids start at `next_node`; returns the pieces and
 /// the next free id.
 ///
-/// Each piece's `source` says what made it: `base + k` for the moved element k of the
-/// contour, `joints + base + k` for the joint at the end of element k (`base`: the index of
-/// the contour's first element among all elements offset together, `joints`: their count).
+/// Each piece's `source` says what made it: `Element(base + k)` for the moved element k of
+/// the contour, `Joint(base + k)` for the joint at the end of element k (`base`: the index of
+/// the contour's first element among all elements offset together).
 ///
 /// Only the pieces `wanted` allows are returned: a moved element when its source is wanted, a
 /// joint's pieces when the joint or a moved element beside it is, so that the ring does not
@@ -29,8 +30,8 @@ pub fn raw_offset(
     d: f64,
     tol: &Tolerance,
     mut next_node: usize,
-    (base, joints): (usize, usize),
-    wanted: &dyn Fn(u32) -> bool,
+    base: usize,
+    wanted: &dyn Fn(Source) -> bool,
 ) -> (Vec<Piece>, usize) {
     let segs = &contour.segments;
     // The moved elements that did not collapse, with the index of their original.
@@ -53,13 +54,13 @@ pub fn raw_offset(
     // Node at the start of moved element i is first + i; its end is the next one's start, with
     // a joining piece between them where they do not meet.
     let mut pieces = Vec::with_capacity(2 * n);
-    let element_wanted = |i: usize| wanted((base + moved[i].0) as u32);
+    let element_wanted = |i: usize| wanted(Source::Element((base + moved[i].0) as u32));
     for i in 0..n {
         let (k, a) = moved[i];
         let (j, b) = moved[(i + 1) % n];
         let (want_element, want_joint) = {
             let own = element_wanted(i);
-            let joint = own || element_wanted((i + 1) % n) || wanted((joints + base + k) as u32);
+            let joint = own || element_wanted((i + 1) % n) || wanted(Source::Joint((base + k) as u32));
             (own, joint)
         };
         if !want_element && !want_joint {
@@ -84,7 +85,7 @@ pub fn raw_offset(
                 segment: a,
                 start,
                 end,
-                source: (base + k) as u32,
+                source: Source::Element((base + k) as u32),
             });
         }
         if meets || !want_joint {
@@ -95,7 +96,7 @@ pub fn raw_offset(
         } else {
             b.start()
         };
-        let source = (joints + base + k) as u32;
+        let source = Source::Joint((base + k) as u32);
         let ends = (a.end(), b_start, end, next_start);
         let adjacent = adjacent(k, j);
         next_node = joining(
@@ -187,7 +188,7 @@ fn joining(
     adjacent: bool,
     joint: Joint,
     (a_end, b_start, end, next_start): (crate::geom::Point, crate::geom::Point, usize, usize),
-    source: u32,
+    source: Source,
     mut next_node: usize,
     pieces: &mut Vec<Piece>,
 ) -> usize {
@@ -373,7 +374,7 @@ mod tests {
         let p = Point::new;
         let c = [p(0.0, 0.0), p(0.0, 10.0), p(10.0, 10.0), p(10.0, 0.0)];
         let contour = Contour::polygon(&c);
-        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, (0, 4), &|_| true);
+        let (pieces, next) = raw_offset(&contour, 2.0, &Tolerance::default(), 0, 0, &|_| true);
         assert_eq!(pieces.len(), 8);
         assert_eq!(next, 8);
         assert!(pieces
@@ -401,22 +402,24 @@ mod tests {
         let c = [p(0.0, 0.0), p(0.0, 10.0), p(10.0, 10.0), p(10.0, 0.0)];
         let contour = Contour::polygon(&c);
         let tol = Tolerance::default();
-        let (all, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|_| true);
-        // Element 2 (source 2): its moved edge and the corner arcs at either end of it (the
-        // joints at the ends of elements 1 and 2, sources 4 + 1 and 4 + 2), as in the whole
-        // ring, joined end to start.
-        let (some, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|s| s == 2);
-        let sources: Vec<u32> = some.iter().map(|p| p.source).collect();
-        assert_eq!(sources, vec![5, 2, 6]);
+        let (all, _) = raw_offset(&contour, 2.0, &tol, 0, 0, &|_| true);
+        // Element 2: its moved edge and the corner arcs at either end of it (the joints at the
+        // ends of elements 1 and 2), as in the whole ring, joined end to start.
+        let (some, _) = raw_offset(&contour, 2.0, &tol, 0, 0, &|s| s == Source::Element(2));
+        let sources: Vec<Source> = some.iter().map(|p| p.source).collect();
+        assert_eq!(
+            sources,
+            vec![Source::Joint(1), Source::Element(2), Source::Joint(2)]
+        );
         for piece in &some {
             let twin = all.iter().find(|q| q.source == piece.source).unwrap();
             assert_eq!(piece.segment, twin.segment);
         }
         assert_eq!((some[0].end, some[1].end), (some[1].start, some[2].start));
         // A joint alone brings only itself.
-        let (joint, _) = raw_offset(&contour, 2.0, &tol, 0, (0, 4), &|s| s == 7);
+        let (joint, _) = raw_offset(&contour, 2.0, &tol, 0, 0, &|s| s == Source::Joint(3));
         assert_eq!(joint.len(), 1);
-        assert_eq!(joint[0].source, 7);
+        assert_eq!(joint[0].source, Source::Joint(3));
     }
 
     #[test]

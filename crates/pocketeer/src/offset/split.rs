@@ -45,8 +45,8 @@ pub struct Overrun {
 
 /// Cuts every piece where it meets another. Pieces meeting at a cut share its node; a cut at a
 /// piece's end is that end's node. Pieces not joined end to start also meet where they come
-/// within [`TOUCH`], if they are of elements that are not neighbours (sources as
-/// [`super::raw::raw_offset`] numbers them, `elements` in all) or run opposite ways there.
+/// within [`TOUCH`], if they are of elements that are not neighbours (by their
+/// [`crate::geom::Source`]s) or run opposite ways there.
 ///
 /// Gives up when finding the pairs to intersect would take more than `budget.0` box
 /// comparisons or the pieces cross more than `budget.1` times (pieces overlapping by the
@@ -57,7 +57,6 @@ pub fn split(
     nodes: &mut Nodes,
     tol: &Tolerance,
     budget: (u64, usize),
-    elements: usize,
 ) -> Result<Vec<Piece>, Overrun> {
     let near_end = tol.rounding();
     let touch = tol.eps.max(TOUCH);
@@ -84,7 +83,7 @@ pub fn split(
         .map(|p| Ends {
             start: nodes.find(p.start),
             end: nodes.find(p.end),
-            element: p.source as usize % elements.max(1),
+            element: p.source.element() as usize,
         })
         .collect();
     let sweep = for_each_overlapping_pair(&boxes, budget.0, |i, j| {
