@@ -67,6 +67,33 @@ impl Tolerance {
     pub fn rounding(&self) -> f64 {
         10.0 * self.eps
     }
+
+    /// A hundred epsilons: how far apart points computed from crossings may be and still be
+    /// one point. Curves meeting at a shallow angle, or turning back along each other at a
+    /// joint, put their computed crossing this far along from where it is; the ends of pieces
+    /// cut there are joined at this distance, and a loop thinner than this is no loop.
+    ///
+    /// ```
+    /// use pocketeer::geom::Tolerance;
+    /// let tol = Tolerance::default();
+    /// assert!(tol.crossing() > tol.rounding());
+    /// ```
+    pub fn crossing(&self) -> f64 {
+        100.0 * self.eps
+    }
+
+    /// A thousand epsilons: two pieces whose ends and middles are this near lie on each other
+    /// (an outline drawn twice, or the two sides of a sliver that cancel). Still far below the
+    /// join tolerance and any machining tolerance.
+    ///
+    /// ```
+    /// use pocketeer::geom::Tolerance;
+    /// let tol = Tolerance::default();
+    /// assert!(tol.coincident() > tol.crossing() && tol.coincident() < tol.join);
+    /// ```
+    pub fn coincident(&self) -> f64 {
+        1e3 * self.eps
+    }
 }
 
 /// Distance (mm) within which two raw offset curves count as meeting: they touch where they

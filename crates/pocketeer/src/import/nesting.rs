@@ -395,8 +395,10 @@ fn boundary_pieces(
     for piece in pieces {
         let mid = piece.point_at(0.5);
         let normal = piece.tangent_at(0.5).perp();
-        // At least 100 eps, even where that exceeds the usual 1e-4 (drawings 1e5 mm across).
-        let delta = (piece.length() * 1e-3).min(1e-4).max(100.0 * tol.eps);
+        // Far enough off the piece to be off every other (at least `crossing`, even where that
+        // exceeds the usual 1e-4 mm: drawings 1e5 mm across), near enough to stay in the
+        // region beside it.
+        let delta = (piece.length() * 1e-3).min(1e-4).max(tol.crossing());
         let left = removed(mid + normal * delta);
         let right = removed(mid - normal * delta);
         if left && !right {
@@ -412,7 +414,7 @@ fn boundary_pieces(
 fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
     let boxes: Vec<Aabb> = pieces.iter().map(|p| p.bbox()).collect();
     let index = BoxIndex::new(&boxes);
-    let r = 1e3 * tol.eps;
+    let r = tol.coincident();
     let mut keep = vec![true; pieces.len()];
     for (i, j) in index.pairs() {
         if !keep[i] || !keep[j] {
@@ -433,10 +435,10 @@ fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
 }
 
 /// Joins pieces end to start into closed loops (see [`crate::geom::stitch`]); ends closer
-/// than a hundred epsilons are one node. Returns the loops and how many pieces were left over.
+/// than [`Tolerance::crossing`] are one node. Returns the loops and how many pieces were left over.
 fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
     let ends: Vec<Point> = pieces.iter().flat_map(|p| [p.start(), p.end()]).collect();
-    let node = cluster_points(&ends, 100.0 * tol.eps);
+    let node = cluster_points(&ends, tol.crossing());
     let pieces: Vec<Piece> = pieces
         .into_iter()
         .enumerate()

@@ -70,7 +70,7 @@ fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Interse
     let index = BoxIndex::new(&boxes);
     // Neighbours turning back tangentially at their joint meet again to within rounding up to
     // about sqrt(2 r eps) from it: hits that near, on curves that do not part, are the joint.
-    let joint_radius = tol.join.max(100.0 * tol.eps);
+    let joint_radius = tol.join.max(tol.crossing());
     for (i, j) in index.pairs() {
         for h in intersect(&segs[i], &segs[j], tol.eps).iter() {
             let Intersection::Point { point, ta, tb } = h else {
@@ -99,7 +99,7 @@ fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Interse
 /// back at a joint and crossing again 0.8 µm further on enclose a sliver to remove; a line
 /// turning back along a tangent arc does not.
 fn lobe_between(a: &Segment, sa: (f64, f64), b: &Segment, sb: (f64, f64), tol: &Tolerance) -> bool {
-    let width = 100.0 * tol.eps;
+    let width = tol.crossing();
     let apart = |s: &Segment, (t0, t1): (f64, f64), other: &Segment| {
         (t1 - t0) * s.length() > width && point_distance(other, s.point_at(0.5 * (t0 + t1))) > width
     };

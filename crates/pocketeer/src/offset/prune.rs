@@ -113,7 +113,7 @@ pub fn cancel_opposites(pieces: &[Piece], graph: &PieceGraph, kept: &mut [bool],
         let twin = graph.leaving(p.end).iter().copied().find(|&j| {
             pieces[j].end == p.start
                 && kept[j]
-                && pieces[j].segment.point_at(0.5).distance(p.segment.point_at(0.5)) <= 1e3 * tol.eps
+                && pieces[j].segment.point_at(0.5).distance(p.segment.point_at(0.5)) <= tol.coincident()
         });
         if let Some(j) = twin {
             kept[i] = false;
