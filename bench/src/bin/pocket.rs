@@ -70,7 +70,6 @@ fn main() {
                 allowance: 0.0,
             };
             let link = LinkParams {
-                tool_radius: 3.0,
                 depth: 2.0,
                 step_down: 2.0,
                 safe_z: 5.0,

@@ -307,7 +307,6 @@ impl Settings {
 
     fn link(&self, args: &PocketArgs) -> LinkParams {
         LinkParams {
-            tool_radius: 0.5 * self.diameter,
             depth: self.depth,
             step_down: self.step_down,
             safe_z: self.safe_z,

@@ -40,7 +40,6 @@
 //! // A 6 mm tool, 40 % stepover, 3 mm deep in two passes, climb milling.
 //! let clear = ClearParams { tool_radius: 3.0, stepover: 2.4, allowance: 0.0 };
 //! let link = LinkParams {
-//!     tool_radius: 3.0,
 //!     depth: 3.0,
 //!     step_down: 1.5,
 //!     safe_z: 5.0,

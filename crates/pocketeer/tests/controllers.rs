@@ -50,7 +50,6 @@ fn programs(dialect: Dialect) -> Vec<(String, String)> {
             allowance: 0.25 * k as f64,
         };
         let link = LinkParams {
-            tool_radius: 3.0,
             depth: 4.0,
             step_down: 1.5,
             safe_z: 5.0,

@@ -95,7 +95,6 @@ fn program(c: &Case, direction: Direction) -> String {
         allowance: c.allowance,
     };
     let link = LinkParams {
-        tool_radius: 3.0,
         depth: c.depth,
         step_down: c.step_down,
         safe_z: 5.0,

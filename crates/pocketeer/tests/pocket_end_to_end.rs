@@ -189,7 +189,6 @@ fn corpus_drawings_are_cleared_cleanly() {
                     allowance: 0.0,
                 },
                 &LinkParams {
-                    tool_radius: 1.5,
                     depth: 1.0,
                     step_down: 3.0,
                     safe_z: 5.0,
@@ -287,7 +286,6 @@ fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
             allowance: 0.0,
         };
         let link = LinkParams {
-            tool_radius: 3.0,
             depth: 2.0,
             step_down: 6.0,
             safe_z: 5.0,

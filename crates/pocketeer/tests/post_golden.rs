@@ -25,7 +25,6 @@ fn program(dialect: Dialect, units: ProgramUnits) -> String {
         allowance: 0.0,
     };
     let link = LinkParams {
-        tool_radius: 3.0,
         depth: 3.0,
         step_down: 1.5,
         safe_z: 5.0,

@@ -126,6 +126,9 @@ pub struct ClearPlan {
     /// The material the roughing levels leave on the walls for level 0, the finishing loops
     /// at the tool radius, mm (0: no finishing pass).
     pub allowance: f64,
+    /// The radius of the tool the plan is for, mm: the linker enters and moves at depth with
+    /// the tool centre at least this far from the walls.
+    pub tool_radius: f64,
 }
 
 impl ClearPlan {
@@ -177,6 +180,7 @@ pub fn plan_prepared(
     let distances = distances[..loops.len()].to_vec();
     let mut plan = tree::build(loops, &distances);
     plan.allowance = params.allowance;
+    plan.tool_radius = params.tool_radius;
     residue::add_cleanups(&mut plan, pocket, &sources, params, tol)?;
     Ok(plan)
 }

@@ -49,11 +49,9 @@ pub enum Entry {
     Plunge,
 }
 
-/// How loops become one tool path.
+/// How loops become one tool path. The tool's radius is the plans' ([`ClearPlan::tool_radius`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinkParams {
-    /// Tool radius, mm.
-    pub tool_radius: f64,
     /// Final depth below the stock top, mm (positive).
     pub depth: f64,
     /// Largest depth of one pass, mm.
@@ -275,10 +273,15 @@ impl<'a> Linker<'a> {
         let reverse = self.params.direction == Direction::Conventional;
         let mut segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
         if item.closed && part.level == 0 && self.plan().allowance > 0.0 {
-            let (pocket, allowance) = (self.pocket(), self.plan().allowance);
-            if let Some((lead_in, lead_out)) =
-                lead::leads(&segments, part.distance, allowance, pocket, self.params, self.tol)
-            {
+            let (plan, pocket) = (self.plan(), self.pocket());
+            if let Some((lead_in, lead_out)) = lead::leads(
+                &segments,
+                part.distance,
+                plan,
+                pocket,
+                self.params.direction,
+                self.tol,
+            ) {
                 segments.insert(0, lead_in);
                 segments.push(lead_out);
             }
@@ -370,30 +373,30 @@ impl<'a> Linker<'a> {
     /// A helix in the part `part` near the start of `segments`; when the part is too small,
     /// in the part around it, and so on outwards (still inside the pocket: no gouge).
     fn find_helix(&self, part: &Part, segments: &[Segment]) -> Option<Helix> {
-        let p = self.params;
+        let r = self.plan().tool_radius;
         let q = segments[0].start();
         let mut part = Some(part);
         let mut first = true;
         while let Some(n) = part {
             let mut samples = if first {
-                entry::samples(segments, 0.5 * p.tool_radius)
+                entry::samples(segments, 0.5 * r)
             } else {
                 Vec::new()
             };
             for h in n.loops() {
-                samples.extend(entry::samples(&h.segments, 0.5 * p.tool_radius));
+                samples.extend(entry::samples(&h.segments, 0.5 * r));
             }
             for c in &n.cleanups {
-                samples.extend(entry::samples(&c.segments, 0.5 * p.tool_radius));
+                samples.extend(entry::samples(&c.segments, 0.5 * r));
             }
             let found = entry::find_helix(
                 self.pocket(),
                 &n.outer,
                 &samples,
                 n.distance,
-                p.tool_radius,
-                0.5 * p.tool_radius,
-                0.1 * p.tool_radius,
+                r,
+                0.5 * r,
+                0.1 * r,
                 q,
             );
             if found.is_some() {
@@ -407,7 +410,7 @@ impl<'a> Linker<'a> {
 
     /// Enters the stock to start `segments` (a walk of `part`) at the pass depth.
     fn enter(&mut self, part: &Part, segments: &[Segment]) {
-        let p = self.params;
+        let (p, r) = (self.params, self.plan().tool_radius);
         let q = segments[0].start();
         if p.entry == Entry::Helix {
             if let Some(h) = self.find_helix(part, segments) {
@@ -417,7 +420,7 @@ impl<'a> Linker<'a> {
                 self.descend_to_floor(start);
                 entry::helix_moves(&mut self.path, &h, self.z_top, self.z, sweep);
                 let end = self.here();
-                if self.stays_inside(end, q, p.tool_radius) {
+                if self.stays_inside(end, q, r) {
                     self.path.line(Point3::at(q, self.z), Feed::Cut);
                     return;
                 }
@@ -435,7 +438,7 @@ impl<'a> Linker<'a> {
                 .chain(segments.iter().rev().map(Segment::reversed))
                 .collect()
         };
-        if p.entry != Entry::Plunge && walk::length(&walk) >= entry::shortest_ramp(p.tool_radius) {
+        if p.entry != Entry::Plunge && walk::length(&walk) >= entry::shortest_ramp(r) {
             self.descend_to_floor(q);
             entry::ramp(&mut self.path, &walk, self.z_top, self.z, p.ramp_angle);
             return;

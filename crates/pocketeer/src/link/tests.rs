@@ -7,7 +7,6 @@ use crate::toolpath::Move;
 
 fn params(entry: Entry) -> LinkParams {
     LinkParams {
-        tool_radius: 3.0,
         depth: 2.0,
         step_down: 2.0,
         safe_z: 5.0,

@@ -36,7 +36,6 @@ pub fn our_program(
         allowance: 0.0,
     };
     let link = LinkParams {
-        tool_radius: r,
         depth,
         step_down: diameter,
         safe_z: 5.0,
