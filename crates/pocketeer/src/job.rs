@@ -1,5 +1,8 @@
 //! The whole pocketing job on a drawing's pockets: plan every pocket, link them into one tool
 //! path.
+//!
+//! In: the pockets, [`ClearParams`] and [`LinkParams`]. Out: a [`Job`], the plans, the linked
+//! tool path and the [`JobWarning`]s (pockets too narrow for the tool).
 
 use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
 use crate::geom::PreparedPocket;

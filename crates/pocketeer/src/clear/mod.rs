@@ -1,6 +1,12 @@
 //! Clearing a pocket: the levels of contour-parallel loops, each taken from the original
 //! region, arranged in a tree, plus clean-up paths wherever the levels alone would leave
-//! material (`../shared/DESIGN.md`, "no leftover").
+//! material: nothing the tool could reach is left uncut.
+//!
+//! In: a [`PreparedPocket`] and [`ClearParams`] (tool radius, stepover, allowance). Out: a
+//! [`ClearPlan`], the tree of [`Part`]s (one connected piece of one level: an outer loop and
+//! the loops around the islands inside it) with their clean-up [`Path`]s; the linker turns it
+//! into moves. `levels.rs` picks the distances, `tree.rs` nests the loops, `residue.rs` finds
+//! what the levels leave between them.
 //!
 //! Why the levels and the clean-up paths leave nothing: a point p of the region whose distance
 //! to the walls is t, with d_k ≤ t < d_(k+1), lies t − d_k from the loop at level k along the

@@ -320,7 +320,7 @@ mod tests {
     fn a_hair_between_segments_counts_as_its_chord_in_the_area() {
         // A 10 mm square 100 mm from the origin whose top edge begins 1e-6 mm right of where
         // the right edge ends: the area is that of the polygon through all five points
-        // (100 mm²; without the chord across the gap it was 5e-6 mm² off).
+        // (100 mm²; a sum that left out the chord across the gap would be 5e-6 mm² off).
         let p = |x, y| Point::new(x, y);
         let pts = [
             p(100.0, 100.0),

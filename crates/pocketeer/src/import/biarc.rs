@@ -189,7 +189,7 @@ mod tests {
     #[test]
     fn an_ellipse_arc_run_backwards_fits_in_a_few_arcs() {
         // A clockwise elliptical arc (t decreasing), as a polyline's negative bulge seen in a
-        // tilted plane gives (fuzzing, import_region): it took 2^24 lines.
+        // tilted plane gives: a fit that mistook the direction would subdivide without end.
         let eval = |t: f64| {
             (
                 Point::new(7.3 * t.cos(), 6.9 * t.sin()),

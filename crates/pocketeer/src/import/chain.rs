@@ -1,5 +1,9 @@
 //! Joining drawn elements, in any order and direction, into closed contours.
 //!
+//! In: the [`Element`]s (lines and arcs with their layer) the curve stage made. Out:
+//! [`Chains`]: closed contours, open chains with their free ends, counts of what was dropped
+//! and joined, and [`ImportWarning`]s.
+//!
 //! End points closer than the join tolerance become one node, and the elements are moved onto
 //! it (no sliver is added). Duplicates (the same element drawn twice, or one lying on another)
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with

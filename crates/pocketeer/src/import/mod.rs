@@ -12,6 +12,8 @@ pub mod error;
 mod expand;
 pub mod nesting;
 mod nodes;
+// Public for the property tests, which check its repair on random contours; not an API.
+#[doc(hidden)]
 pub mod self_crossing;
 pub mod units;
 mod warning;

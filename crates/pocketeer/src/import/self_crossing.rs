@@ -206,10 +206,10 @@ mod tests {
 
     #[test]
     fn arcs_turning_back_at_a_joint_and_crossing_again_within_the_join_tolerance_lose_the_sliver() {
-        // Two arcs 0.008 and 0.006 mm in radius, as the importer once left them (fuzz input
-        // `two_arcs_a_few_micrometres_across_at_a_joint`): they turn back by 173° at their
-        // joint and cross again 0.8 µm from it, closer than the join tolerance, enclosing a
-        // lobe 2e-5 mm wide that was taken for the joint.
+        // Two arcs 0.008 and 0.006 mm in radius (as biarc fitting leaves them in a fine
+        // drawing): they turn back by 173° at their joint and cross again 0.8 µm from it,
+        // closer than the join tolerance, enclosing a lobe 2e-5 mm wide that must not be taken
+        // for the joint.
         let a = Arc::new(
             Point::new(177.325, 177.33589054188832),
             0.007726479388300923,

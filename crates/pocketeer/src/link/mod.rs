@@ -2,6 +2,12 @@
 //! the stock, how it goes from one loop to the next, and the depth passes. The result is a
 //! [`Toolpath`] of exact lines and arcs.
 //!
+//! In: each pocket as a [`PreparedPocket`] with its [`ClearPlan`], and [`LinkParams`] (depth,
+//! step-down, heights, [`Direction`], [`Entry`]). Out: [`Linked`], the tool path and its
+//! [`LinkWarning`]s. The milling direction is chosen here ([`Direction`]); `entry.rs` finds
+//! helices and ramps, `lead.rs` the arcs onto and off the finishing loop, `walk.rs` where a
+//! loop is started.
+//!
 //! Each part of the clearing tree is cut after everything inside it (inside-out): its children
 //! first, then its clean-up paths, the loops around its islands, and its outer loop last. Once
 //! a part's children are cut, the tool may move at depth anywhere that stays inside the part

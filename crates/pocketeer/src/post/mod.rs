@@ -1,6 +1,9 @@
 //! G-code: one writer for the moves, one small file per controller for what differs between
 //! them (start and end of the program, comments, arc centre mode).
 //!
+//! In: a [`Toolpath`] and [`ProgramSettings`] (feeds, spindle, heights, coolant). Out: the
+//! program text ([`write_gcode`]) for a [`Dialect`], and the time it takes ([`estimate`]).
+//!
 //! Arcs stay arcs: G2/G3 with I/J relative to the printed start point (never R), split into
 //! pieces of at most half a turn, so the centre the controller computes is within 0.0001 mm of
 //! ours and every end point lies on its circle to well under GRBL's 0.005 mm.

@@ -70,7 +70,7 @@ fn an_arc_ending_on_an_arc_at_a_shallow_angle_meets_it_at_its_end() {
 fn an_end_on_the_other_line_at_a_shallow_angle_meets_it_where_it_projects() {
     // The end of the rising line lies 3e-10 below the horizontal one (within eps); their
     // carriers cross 1.2e-6 beyond that end, too far to snap to (offsets of a triangle
-    // 0.02 high and 164 long, found by fuzzing).
+    // 0.02 high and 164 long).
     let rising = line(244.17, -0.01, 162.25, 0.01 - 3e-10);
     let flat = line(80.33, 0.01, 244.17, 0.01);
     for (a, b, swapped) in [(&rising, &flat, false), (&flat, &rising, true)] {
