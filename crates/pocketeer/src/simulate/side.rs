@@ -27,7 +27,7 @@ impl Sides {
     /// `None` when the tool follows no wall.
     ///
     /// ```
-    /// use pocketeer::simulate::side::Sides;
+    /// use pocketeer::simulate::Sides;
     /// assert_eq!(Sides { right: 3.0, left: 1.0 }.climb_share(), Some(0.75));
     /// assert_eq!(Sides::default().climb_share(), None);
     /// ```
