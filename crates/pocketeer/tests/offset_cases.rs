@@ -1,7 +1,7 @@
 //! Offsets of pockets with known answers, and the invariants every offset loop must keep.
 
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Pocket, Point, Segment, Tolerance};
-use pocketeer::offset::{offset_contour, offset_pocket};
+use pocketeer::geom::{Arc, Contour, Line, Pocket, Point, Segment, Tolerance};
+use pocketeer::offset::{offset_contour, offset_pocket, verify_offset};
 use std::f64::consts::{PI, TAU};
 
 fn polygon(pts: &[(f64, f64)]) -> Contour {
@@ -12,45 +12,10 @@ fn circle_cw(x: f64, y: f64, r: f64) -> Contour {
     Contour::new(vec![Segment::Arc(Arc::new(Point::new(x, y), r, 0.0, -TAU))])
 }
 
-/// Every loop point lies at distance d from the original profile and inside the region.
+/// Every loop closed, at distance d from the walls and inside the pocket.
 fn check_loops(pocket: &Pocket, loops: &[Contour], d: f64) {
-    let profile: Vec<Segment> = pocket
-        .boundary
-        .segments
-        .iter()
-        .chain(pocket.islands.iter().flat_map(|i| i.segments.iter()))
-        .copied()
-        .collect();
-    for l in loops {
-        for s in &l.segments {
-            for k in 0..=10 {
-                let p = s.point_at(k as f64 / 10.0);
-                let dist = profile
-                    .iter()
-                    .map(|o| point_distance(o, p))
-                    .fold(f64::INFINITY, f64::min);
-                assert!(
-                    (dist - d).abs() <= 1e-6 * d.max(1.0),
-                    "{p:?} is {dist} from the profile, not {d}"
-                );
-                // Inside the region: within the boundary and outside every island (a point at d
-                // from the profile is never on it).
-                assert!(
-                    pocket.boundary.contains(p) && !pocket.islands.iter().any(|i| i.contains(p)),
-                    "{p:?} is outside the pocket"
-                );
-            }
-        }
-        // Closed, exactly.
-        for w in 0..l.segments.len() {
-            let (a, b) = (l.segments[w], l.segments[(w + 1) % l.segments.len()]);
-            assert!(
-                a.end().distance(b.start()) < 1e-6,
-                "loop not closed: {:?} vs {:?}",
-                a.end(),
-                b.start()
-            );
-        }
+    if let Err(fault) = verify_offset(pocket, loops, d) {
+        panic!("{fault}");
     }
 }
 

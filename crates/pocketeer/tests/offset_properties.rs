@@ -4,9 +4,9 @@
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use pocketeer::geom::Pocket;
-use pocketeer::geom::{intersect, point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
+use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
 use pocketeer::import::self_crossing::make_simple;
-use pocketeer::offset::offset_pocket;
+use pocketeer::offset::{loops_meet, offset_pocket, verify_offset};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 
@@ -87,15 +87,6 @@ fn cavalier_area(pocket: &Pocket, d: f64) -> f64 {
         + out.cw_plines.iter().map(|p| p.polyline.area()).sum::<f64>()
 }
 
-fn profile(p: &Pocket) -> Vec<Segment> {
-    p.boundary
-        .segments
-        .iter()
-        .chain(p.islands.iter().flat_map(|i| i.segments.iter()))
-        .copied()
-        .collect()
-}
-
 /// The loops `b` (moved back by `shift`) are the loops `a`: as many, and every point of each
 /// within `within` of the other set, both ways.
 fn same_loops(a: &[Contour], b: &[Contour], shift: Vector, within: f64) -> Result<(), TestCaseError> {
@@ -131,29 +122,11 @@ proptest! {
     fn offsets_are_closed_simple_at_distance_d_and_inside(p in pocket(), d in 0.3..12.0f64) {
         let tol = Tolerance::default();
         let loops = offset_pocket(&p, d, &tol).unwrap();
-        let prof = profile(&p);
-        for (k, l) in loops.iter().enumerate() {
-            let n = l.segments.len();
-            for w in 0..n {
-                prop_assert!(l.segments[w].end().distance(l.segments[(w + 1) % n].start()) < 1e-6);
-            }
+        verify_offset(&p, &loops, d).map_err(|f| TestCaseError::fail(f.to_string()))?;
+        prop_assert!(loops_meet(&loops).is_none(), "{:?}", loops_meet(&loops));
+        for l in &loops {
             let (_, slivers) = make_simple(l, &Tolerance { join: 1e-9, ..tol }).map_err(|x| TestCaseError::fail(format!("loop crosses itself at {:?}", x.point)))?;
             prop_assert!(slivers.is_empty());
-            for s in &l.segments {
-                for i in 0..=8 {
-                    let q = s.point_at(i as f64 / 8.0);
-                    let dist = prof.iter().map(|o| point_distance(o, q)).fold(f64::INFINITY, f64::min);
-                    prop_assert!((dist - d).abs() <= 1e-6 * d.max(1.0), "{:?} is {} from the profile, not {}", q, dist, d);
-                    prop_assert!(p.boundary.contains(q) && !p.islands.iter().any(|i| i.contains(q)));
-                }
-            }
-            for other in &loops[k + 1..] {
-                for a in &l.segments {
-                    for b in &other.segments {
-                        prop_assert!(intersect(a, b, 1e-9).is_empty(), "two loops meet");
-                    }
-                }
-            }
         }
     }
 

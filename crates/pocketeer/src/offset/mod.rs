@@ -12,6 +12,7 @@
 //!   outside the region — the stage that decides a piece is too close;
 //! - `clip.rs`: a fallback that cuts provably invalid parts before splitting;
 //! - `levels.rs`: many distances at once, on every core;
+//! - `verify.rs`: an offset checked against its definition ([`verify_offset`]);
 //! - stitching the kept pieces into loops is [`crate::geom::stitch`]'s.
 //!
 //! The contours must be as the importer makes them, each simple (not crossing
@@ -36,8 +37,10 @@ mod levels;
 mod prune;
 mod raw;
 mod split;
+mod verify;
 
 pub(crate) use levels::offsets_until_empty;
+pub use verify::{loops_meet, verify_offset, OffsetFault, OFFSET_ACCURACY};
 
 use crate::geom::Pocket;
 use crate::geom::{
