@@ -7,9 +7,6 @@ use super::Post;
 pub struct Grbl;
 
 impl Post for Grbl {
-    fn comment(&self, text: &str) -> String {
-        format!("({text})")
-    }
     fn tool_change(&self, n: u32) -> Vec<String> {
         // GRBL 1.1 takes a T word but refuses M6: the tool is loaded by hand before the start.
         vec![

@@ -8,15 +8,6 @@ use super::Post;
 pub struct LinuxCnc;
 
 impl Post for LinuxCnc {
-    fn comment(&self, text: &str) -> String {
-        format!("({text})")
-    }
-    fn tool_change(&self, n: u32) -> Vec<String> {
-        super::change_tool_with_length_offset(n)
-    }
-    fn has_mist(&self) -> bool {
-        true
-    }
     fn setup(&self) -> &'static [&'static str] {
         &["G90 G94 G17 G91.1", "G40 G49 G80", "G64 P0.01"]
     }

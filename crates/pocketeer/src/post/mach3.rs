@@ -7,15 +7,6 @@ use super::Post;
 pub struct Mach3;
 
 impl Post for Mach3 {
-    fn comment(&self, text: &str) -> String {
-        format!("({text})")
-    }
-    fn tool_change(&self, n: u32) -> Vec<String> {
-        super::change_tool_with_length_offset(n)
-    }
-    fn has_mist(&self) -> bool {
-        true
-    }
     fn dwell_remark(&self) -> Option<&'static str> {
         // Mach3's General Config decides whether G4 P is seconds or milliseconds.
         Some("seconds: with G4 in milliseconds in Mach3's config, multiply by 1000")

@@ -157,12 +157,19 @@ pub fn estimate(path: &Toolpath, s: &ProgramSettings, rapid_rate: f64) -> Estima
 
 /// What one controller needs at the start and end of a program.
 trait Post {
-    /// A comment line holding `text`.
-    fn comment(&self, text: &str) -> String;
-    /// The lines that load tool `n` (before the spindle starts).
-    fn tool_change(&self, n: u32) -> Vec<String>;
+    /// A comment line holding `text`: in parentheses, which every controller we write for reads.
+    fn comment(&self, text: &str) -> String {
+        format!("({text})")
+    }
+    /// The lines that load tool `n` (before the spindle starts): by default a changer's
+    /// `T n M6` and the tool's length offset.
+    fn tool_change(&self, n: u32) -> Vec<String> {
+        change_tool_with_length_offset(n)
+    }
     /// True when the controller takes M7 (mist coolant).
-    fn has_mist(&self) -> bool;
+    fn has_mist(&self) -> bool {
+        true
+    }
     /// A remark for the dwell line, where the controller's reading of G4 P is a setting.
     fn dwell_remark(&self) -> Option<&'static str> {
         None
