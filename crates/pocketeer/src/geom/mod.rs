@@ -3,6 +3,7 @@
 
 mod aabb;
 mod arc;
+mod cluster;
 mod contour;
 pub mod distance;
 mod index;
@@ -18,6 +19,7 @@ mod tolerance;
 
 pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
+pub use cluster::{cluster_points, cluster_points_by};
 pub use contour::{signed_area, winding_number, Contour, WindingIndex};
 pub use distance::{closest_param, closest_point, point_distance, segment_distance};
 pub use index::{for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
@@ -28,6 +30,6 @@ pub use pocket::Pocket;
 pub use point::{Point, Vector};
 pub use prepared::PreparedPocket;
 pub use segment::Segment;
-pub use stitch::{cluster_points, stitch, Piece, Source};
+pub use stitch::{stitch, Piece, Source};
 pub(crate) use stitch::{stitch_kept, PieceGraph};
 pub use tolerance::{offset_slack, Tolerance, DEFAULT_JOIN_TOLERANCE, JOIN_SLACK, NEAR_REVERSAL, TOUCH};

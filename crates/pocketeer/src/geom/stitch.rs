@@ -5,9 +5,7 @@
 //! a node, the one turning most to the left is taken: with the material on the left of every
 //! piece, two loops that touch at one point stay two loops.
 
-use super::{Contour, Point, Segment, Vector};
-use crate::union_find::UnionFind;
-use std::collections::HashMap;
+use super::{Contour, Segment, Vector};
 
 /// A piece of boundary, with the material on its left, between two nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -220,31 +218,10 @@ fn turn_key(incoming: Vector, next: &Segment) -> (f64, f64) {
     (angle, curvature)
 }
 
-/// Node ids for points: points closer than `r` (transitively) share an id.
-pub fn cluster_points(points: &[Point], r: f64) -> Vec<usize> {
-    let cell = |p: Point| ((p.x / r).floor() as i64, (p.y / r).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    let mut sets = UnionFind::new(points.len());
-    for (k, &p) in points.iter().enumerate() {
-        let (cx, cy) = cell(p);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for &o in grid.get(&(cx + dx, cy + dy)).map(Vec::as_slice).unwrap_or(&[]) {
-                    if points[o].distance(p) <= r {
-                        sets.union(o, k);
-                    }
-                }
-            }
-        }
-        grid.entry((cx, cy)).or_default().push(k);
-    }
-    (0..points.len()).map(|k| sets.find(k)).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Line;
+    use crate::geom::{Line, Point};
 
     /// Pieces along `path`, a list of (node, point), closed back to its first entry.
     fn pieces_along(path: &[(usize, Point)]) -> Vec<Piece> {

@@ -4,8 +4,7 @@
 
 use super::chain::End;
 use super::Element;
-use crate::geom::{Point, Tolerance};
-use crate::union_find::UnionFind;
+use crate::geom::{cluster_points_by, Point, Tolerance};
 use std::collections::HashMap;
 
 /// End points merged into nodes.
@@ -31,44 +30,13 @@ impl Nodes {
                 }
             })
             .collect();
-        let radius = tol.join.max(tol.eps);
-        let cell = |p: Point| ((p.x / radius).floor() as i64, (p.y / radius).floor() as i64);
-        // Grid cells hold linked lists of end indices (head in the map, links in `next`).
-        let mut grid: HashMap<(i64, i64), usize> = HashMap::new();
-        let mut next = vec![usize::MAX; 2 * n];
-        let mut exact: HashMap<(u64, u64, usize), usize> = HashMap::new();
-        let mut sets = UnionFind::new(2 * n);
-        for k in 0..2 * n {
-            if !alive[k / 2] {
-                continue;
-            }
-            // An end exactly where an earlier one is joins it and everything it joins.
-            if let Some(&o) = exact.get(&(ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer)) {
-                sets.union(o, k);
-                continue;
-            }
-            exact.insert(
-                (ends[k].x.to_bits(), ends[k].y.to_bits(), elements[k / 2].layer),
-                k,
-            );
-            let (cx, cy) = cell(ends[k]);
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    let mut o = grid.get(&(cx + dx, cy + dy)).copied().unwrap_or(usize::MAX);
-                    while o != usize::MAX {
-                        // Contours are chained within their layer only.
-                        if elements[o / 2].layer == elements[k / 2].layer
-                            && ends[o].distance(ends[k]) <= radius
-                        {
-                            sets.union(o, k);
-                        }
-                        o = next[o];
-                    }
-                }
-            }
-            let head = grid.entry((cx, cy)).or_insert(usize::MAX);
-            next[k] = *head;
-            *head = k;
+        // Contours are chained within their layer only; dead elements' ends take no part.
+        let live: Vec<usize> = (0..2 * n).filter(|&k| alive[k / 2]).collect();
+        let live_ends: Vec<Point> = live.iter().map(|&k| ends[k]).collect();
+        let cluster = cluster_points_by(&live_ends, tol.join.max(tol.eps), |i| elements[live[i] / 2].layer);
+        let mut root = vec![usize::MAX; 2 * n];
+        for (i, &k) in live.iter().enumerate() {
+            root[k] = cluster[i];
         }
         let mut index: HashMap<usize, usize> = HashMap::new();
         let mut node_of = vec![usize::MAX; 2 * n];
@@ -77,8 +45,7 @@ impl Nodes {
             if !alive[k / 2] {
                 continue;
             }
-            let root = sets.find(k);
-            let id = *index.entry(root).or_insert_with(|| {
+            let id = *index.entry(root[k]).or_insert_with(|| {
                 sums.push((0.0, 0.0, 0));
                 sums.len() - 1
             });
