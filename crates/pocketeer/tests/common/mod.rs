@@ -2,6 +2,7 @@
 
 #![allow(dead_code)]
 
+pub mod analysis;
 pub mod program;
 pub mod replay;
 pub mod shapes;
