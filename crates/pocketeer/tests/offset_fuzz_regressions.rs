@@ -126,6 +126,17 @@ fn imported(vertices: &[Vertex]) -> Option<Contour> {
     Some(counter_clockwise(pocket.boundary.clone()))
 }
 
+/// The verified loops of the imported outline alone at the fuzz input's distance.
+fn imported_loops(vertices: &[Vertex], distance_input: u16) -> Vec<Contour> {
+    check(
+        &Pocket {
+            boundary: imported_as_drawn(vertices),
+            islands: vec![],
+        },
+        distance_input,
+    )
+}
+
 /// [`imported`], failing the test when the importer refuses.
 fn imported_as_drawn(vertices: &[Vertex]) -> Contour {
     imported(vertices).expect("the importer takes the outline")
@@ -376,13 +387,7 @@ fn a_sliver_triangle_whose_inscribed_circle_has_radius_d() {
         [(257, 257, 0), (257, -255, 0), (255, 1, 0)],
     ] {
         for (label, v) in variants(&v) {
-            let loops = check(
-                &Pocket {
-                    boundary: imported_as_drawn(&v),
-                    islands: vec![],
-                },
-                0,
-            );
+            let loops = imported_loops(&v, 0);
             assert!(loops.is_empty(), "{label}: {loops:?}");
         }
     }
@@ -394,13 +399,7 @@ fn a_sliver_triangle_whose_inscribed_circle_has_radius_d() {
 fn a_neck_narrower_than_2d_between_two_lenses() {
     let v = [(2, 131, 1), (-2, 0, 127), (14080, 5632, 0), (0, 0, 0)];
     for (label, v) in variants(&v) {
-        let loops = check(
-            &Pocket {
-                boundary: imported_as_drawn(&v),
-                islands: vec![],
-            },
-            0,
-        );
+        let loops = imported_loops(&v, 0);
         assert_eq!(loops.len(), 1, "{label}: {loops:?}");
         assert!(loops[0].is_ccw(), "{label}");
         assert!(loops[0].signed_area() > 8900.0, "{label}");
@@ -414,13 +413,7 @@ fn a_neck_narrower_than_2d_between_two_lenses() {
 fn the_offsets_of_a_hairpin_2d_wide_meet() {
     let v = [(0, -32512, -17), (-255, 5888, 17), (-1, -255, -1), (-1, 255, 0)];
     for (label, v) in variants(&v) {
-        let loops = check(
-            &Pocket {
-                boundary: imported_as_drawn(&v),
-                islands: vec![],
-            },
-            0,
-        );
+        let loops = imported_loops(&v, 0);
         assert_eq!(loops.len(), 1, "{label}: {loops:?}");
         assert!(loops[0].is_ccw(), "{label}");
     }
