@@ -1,7 +1,7 @@
 //! Splines and ellipses become arcs that stay within 0.001 mm of the true curve, both ways:
 //! every curve point is near an arc, and every arc point is near the curve.
 
-use pocketeer::geom::{point_distance, Point, Segment, Vector};
+use pocketeer::geom::{distance_from_segment, Point, Segment, Vector};
 use pocketeer::import::curve::{Curve, EllipseArc, Nurbs};
 use pocketeer::import::CURVE_TOLERANCE;
 use proptest::prelude::*;
@@ -51,7 +51,7 @@ fn check(curve: &Curve, t0: f64, t1: f64, eval: &dyn Fn(f64) -> Point) -> Result
     for &(_, p) in &samples {
         let d = segs
             .iter()
-            .map(|s| point_distance(s, p))
+            .map(|s| distance_from_segment(s, p))
             .fold(f64::INFINITY, f64::min);
         prop_assert!(d <= CURVE_TOLERANCE, "curve point {p:?} is {d} from the arcs");
     }

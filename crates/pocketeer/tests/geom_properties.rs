@@ -1,7 +1,7 @@
 //! Property tests of the geometry kernel's invariants.
 
 use pocketeer::geom::{
-    intersect, point_distance, segment_distance, signed_area, Arc, Intersection, Line, Point, Segment,
+    distance_from_segment, intersect, segment_distance, signed_area, Arc, Intersection, Line, Point, Segment,
     SegmentIndex, Tolerance, Vector,
 };
 use proptest::prelude::*;
@@ -103,8 +103,8 @@ proptest! {
         for i in intersect(&a, &b, e).iter() {
             match i {
                 Intersection::Point { point, ta, tb } => {
-                    prop_assert!(point_distance(&a, point) <= 4.0 * e, "{:?} off a by {}", point, point_distance(&a, point));
-                    prop_assert!(point_distance(&b, point) <= 4.0 * e, "{:?} off b by {}", point, point_distance(&b, point));
+                    prop_assert!(distance_from_segment(&a, point) <= 4.0 * e, "{:?} off a by {}", point, distance_from_segment(&a, point));
+                    prop_assert!(distance_from_segment(&b, point) <= 4.0 * e, "{:?} off b by {}", point, distance_from_segment(&b, point));
                     prop_assert!(a.point_at(ta).distance(point) <= 4.0 * e);
                     prop_assert!(b.point_at(tb).distance(point) <= 4.0 * e);
                 }
@@ -112,7 +112,7 @@ proptest! {
                     prop_assert!(ra.0 < ra.1);
                     for (ta, tb) in [(ra.0, rb.0), (ra.1, rb.1), (0.5 * (ra.0 + ra.1), 0.5 * (rb.0 + rb.1))] {
                         let p = a.point_at(ta);
-                        prop_assert!(point_distance(&b, p) <= 4.0 * e);
+                        prop_assert!(distance_from_segment(&b, p) <= 4.0 * e);
                         prop_assert!(b.point_at(tb).distance(p) <= 4.0 * e, "{:?} vs {:?}", b.point_at(tb), p);
                     }
                 }
@@ -136,13 +136,13 @@ proptest! {
             prop_assert_eq!(dab, 0.0);
         }
         // The reported points are on their segments and as far apart as reported.
-        prop_assert!(point_distance(&a, pa) <= 4.0 * e);
-        prop_assert!(point_distance(&b, pb) <= 4.0 * e);
+        prop_assert!(distance_from_segment(&a, pa) <= 4.0 * e);
+        prop_assert!(distance_from_segment(&b, pb) <= 4.0 * e);
         prop_assert!((pa.distance(pb) - dab).abs() <= 4.0 * e);
         // No pair of sampled points is nearer than the distance.
         for i in 0..=16 {
             let p = a.point_at(i as f64 / 16.0);
-            prop_assert!(point_distance(&b, p) >= dab - 1e-9 * (1.0 + dab));
+            prop_assert!(distance_from_segment(&b, p) >= dab - 1e-9 * (1.0 + dab));
         }
     }
 
@@ -211,7 +211,7 @@ proptest! {
         }
         for p in probes {
             // Points on (or within the flattening error of) the curve have no defined winding.
-            if segs.iter().any(|s| point_distance(s, p) < 1e-2) {
+            if segs.iter().any(|s| distance_from_segment(s, p) < 1e-2) {
                 continue;
             }
             prop_assert_eq!(pocketeer::geom::winding_number(&segs, p), polygon_winding(&poly, p), "at {:?}", p);
@@ -243,7 +243,7 @@ proptest! {
     ) {
         let index = SegmentIndex::new(&segs);
         for q in queries {
-            let brute = segs.iter().map(|s| point_distance(s, q)).fold(f64::INFINITY, f64::min);
+            let brute = segs.iter().map(|s| distance_from_segment(s, q)).fold(f64::INFINITY, f64::min);
             prop_assert!((index.distance(q) - brute).abs() <= 1e-9, "{} vs {}", index.distance(q), brute);
         }
     }
@@ -257,7 +257,7 @@ proptest! {
     ) {
         let index = SegmentIndex::new(&segs);
         for (q, r) in queries {
-            let brute = segs.iter().map(|s| point_distance(s, q)).fold(f64::INFINITY, f64::min);
+            let brute = segs.iter().map(|s| distance_from_segment(s, q)).fold(f64::INFINITY, f64::min);
             if (brute - r).abs() > 1e-9 {
                 prop_assert_eq!(index.any_within(q, r), brute < r, "at {:?} r {}: nearest {}", q, r, brute);
             }

@@ -138,7 +138,7 @@ fn a_circle_in_a_non_uniformly_scaled_block_becomes_an_ellipse_of_arcs() {
             .drawing
             .elements
             .iter()
-            .map(|e| pocketeer::geom::point_distance(&e.segment, p))
+            .map(|e| pocketeer::geom::distance_from_segment(&e.segment, p))
             .fold(f64::INFINITY, f64::min);
         assert!(d <= 0.001, "deviation {d} at {p:?}");
     }
@@ -289,7 +289,7 @@ fn a_spline_given_by_fit_points_passes_through_them() {
         let p = pocketeer::geom::Point::new(x, y);
         let d = segs
             .iter()
-            .map(|s| pocketeer::geom::point_distance(s, p))
+            .map(|s| pocketeer::geom::distance_from_segment(s, p))
             .fold(f64::INFINITY, f64::min);
         assert!(d <= 0.001, "fit point {p:?} is {d} from the curve");
     }

@@ -11,7 +11,7 @@ use common::shapes::{circle_cw, mirror_segment, mirrored, polygon, rect, star};
 use pocketeer::clear::{plan_pocket, ClearParams};
 use pocketeer::export::dxf::{write_dxf, LayeredContour};
 use pocketeer::geom::Pocket;
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Vector};
+use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Vector};
 use pocketeer::import::Units;
 use pocketeer::ImportOptions;
 
@@ -265,7 +265,7 @@ fn assert_same(name: &str, a: &[Contour], b: &[Contour], within: f64) {
                 let q = s.point_at(k as f64 / 2.0);
                 let dist = to
                     .iter()
-                    .map(|o| point_distance(o, q))
+                    .map(|o| distance_from_segment(o, q))
                     .fold(f64::INFINITY, f64::min);
                 assert!(dist <= within, "{name}: {q:?} is {dist} from the other result");
             }

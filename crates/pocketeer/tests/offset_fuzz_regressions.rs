@@ -10,7 +10,7 @@ mod offset_fuzz_inputs;
 
 use offset_fuzz_inputs::{Take, CASES};
 use pocketeer::geom::Pocket;
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Tolerance};
 
 /// A fuzz input's vertex: x, y in hundredths of a millimetre, the bulge of the edge to the
 /// next in 128ths (wider than the input's i8 so that a reversed -128 stays exact).
@@ -200,7 +200,11 @@ fn round_islands(boundary: &Contour, islands: &[(i16, i16, u8)]) -> Vec<Contour>
             )
         })
         .filter(|&(c, r)| {
-            boundary.contains(c) && boundary.segments.iter().all(|s| point_distance(s, c) > r + 0.01)
+            boundary.contains(c)
+                && boundary
+                    .segments
+                    .iter()
+                    .all(|s| distance_from_segment(s, c) > r + 0.01)
         })
         .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
         .collect()

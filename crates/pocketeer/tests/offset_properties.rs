@@ -4,7 +4,7 @@
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use pocketeer::geom::Pocket;
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
+use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
 use pocketeer::import::self_crossing::make_simple;
 use pocketeer::offset::{loops_meet, offset_pocket, verify_offset};
 use proptest::prelude::*;
@@ -40,7 +40,10 @@ fn pocket() -> impl Strategy<Value = Pocket> {
             let mut islands: Vec<(Point, f64)> = Vec::new();
             for (x, y, r) in holes {
                 let c = Point::new(x, y);
-                let clear_of_wall = boundary.segments.iter().all(|s| point_distance(s, c) > r + 1.0);
+                let clear_of_wall = boundary
+                    .segments
+                    .iter()
+                    .all(|s| distance_from_segment(s, c) > r + 1.0);
                 let clear_of_others = islands.iter().all(|&(o, ro)| o.distance(c) > r + ro + 1.0);
                 if clear_of_wall && clear_of_others && boundary.contains(c) {
                     islands.push((c, r));
@@ -102,7 +105,7 @@ fn same_loops(a: &[Contour], b: &[Contour], shift: Vector, within: f64) -> Resul
                 let q = s.point_at(k as f64 / 4.0);
                 let dist = to
                     .iter()
-                    .map(|o| point_distance(o, q))
+                    .map(|o| distance_from_segment(o, q))
                     .fold(f64::INFINITY, f64::min);
                 prop_assert!(dist <= within, "{:?} is {} from the other result", q, dist);
             }

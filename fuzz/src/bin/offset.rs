@@ -3,7 +3,7 @@
 //! at distance d from the walls, 1e-6 relative, and inside the pocket), or be empty; never panic.
 
 use arbitrary::{Arbitrary, Unstructured};
-use pocketeer::geom::{point_distance, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Tolerance};
 use pocketeer::geom::Pocket;
 
 #[derive(Arbitrary, Debug)]
@@ -93,7 +93,7 @@ fn run(data: &[u8]) {
                     0.1 + r as f64 / 20.0,
                 )
             })
-            .filter(|&(c, r)| boundary.contains(c) && segs.iter().all(|s| point_distance(s, c) > r + 0.01))
+            .filter(|&(c, r)| boundary.contains(c) && segs.iter().all(|s| distance_from_segment(s, c) > r + 0.01))
             .map(|(c, r)| Contour::new(vec![Segment::Arc(Arc::new(c, r, 0.0, -std::f64::consts::TAU))]))
             .collect();
         // Islands that overlap each other are merged by the importer: skip such inputs.

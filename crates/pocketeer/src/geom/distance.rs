@@ -39,8 +39,8 @@ pub fn closest_point(seg: &Segment, p: Point) -> Point {
     seg.point_at(closest_param(seg, p))
 }
 
-/// Distance from `p` to `seg`.
-pub fn point_distance(seg: &Segment, p: Point) -> f64 {
+/// Distance from the segment `seg` to the point `p`.
+pub fn distance_from_segment(seg: &Segment, p: Point) -> f64 {
     match seg {
         Segment::Line(l) => line_point_distance(l, p),
         Segment::Arc(a) => {
@@ -60,7 +60,7 @@ pub(crate) fn line_point_distance(l: &Line, p: Point) -> f64 {
 }
 
 /// Distance from `p` to the arc `a` whose end points `start` and `end` are already known:
-/// [`point_distance`] without trigonometry, for indexes that measure the same arcs often.
+/// [`distance_from_segment`] without trigonometry, for indexes that measure the same arcs often.
 pub(crate) fn arc_point_distance_with_ends(a: &Arc, start: Point, end: Point, p: Point) -> f64 {
     let v = p - a.center;
     if in_sweep(a.sweep, start - a.center, end - a.center, v) {

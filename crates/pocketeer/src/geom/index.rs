@@ -181,7 +181,7 @@ impl Measured {
         }
     }
 
-    /// Distance from `p`: [`point_distance`](super::point_distance), with the arc's ends known.
+    /// Distance from `p`: [`distance_from_segment`](super::distance_from_segment), with the arc's ends known.
     fn distance(&self, p: Point) -> f64 {
         match &self.segment {
             Segment::Line(l) => line_point_distance(l, p),
@@ -294,10 +294,10 @@ impl SegmentIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{point_distance, Arc, Vector};
+    use crate::geom::{distance_from_segment, Arc, Vector};
     use std::f64::consts::{PI, TAU};
 
-    /// The sign tests agree with the angle test of [`point_distance`] all round arcs of every
+    /// The sign tests agree with the angle test of [`distance_from_segment`] all round arcs of every
     /// kind of sweep, both ways.
     #[test]
     fn measured_distance_matches_point_distance() {
@@ -310,7 +310,7 @@ mod tests {
                     let t = j as f64 * TAU / 72.0 + 0.01;
                     for r in [0.0, 0.5, 2.0, 3.5] {
                         let p = c + Vector::from_angle(t) * r;
-                        let want = point_distance(&Segment::Arc(a), p);
+                        let want = distance_from_segment(&Segment::Arc(a), p);
                         assert!(
                             (m.distance(p) - want).abs() < 1e-12,
                             "sweep {sweep} k {k} j {j} r {r}"

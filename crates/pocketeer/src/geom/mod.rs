@@ -21,7 +21,7 @@ pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
 pub use cluster::{cluster_points, cluster_points_by};
 pub use contour::{signed_area, winding_number, Contour, WindingIndex};
-pub use distance::{closest_param, closest_point, point_distance, segment_distance};
+pub use distance::{closest_param, closest_point, distance_from_segment, segment_distance};
 pub use index::{for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;

@@ -1,7 +1,7 @@
 //! Approximation of smooth curves (ellipses, splines) by biarcs: pairs of tangent-continuous
 //! circular arcs, subdivided until every sampled curve point is within the tolerance.
 
-use crate::geom::{point_distance, Arc, Line, Point, Segment, Vector};
+use crate::geom::{distance_from_segment, Arc, Line, Point, Segment, Vector};
 
 /// Number of curve samples checked against each biarc.
 const SAMPLES: usize = 24;
@@ -51,7 +51,7 @@ fn fit_rec(
             .iter()
             .map(|&(_, p)| {
                 segs.iter()
-                    .map(|s| point_distance(s, p))
+                    .map(|s| distance_from_segment(s, p))
                     .fold(f64::INFINITY, f64::min)
             })
             .fold(0.0, f64::max);
@@ -206,7 +206,7 @@ mod tests {
             let p = eval(t0 + (t1 - t0) * i as f64 / 100.0).0;
             let d = out
                 .iter()
-                .map(|s| point_distance(s, p))
+                .map(|s| distance_from_segment(s, p))
                 .fold(f64::INFINITY, f64::min);
             assert!(d <= 0.001, "{d}");
         }
@@ -228,7 +228,7 @@ mod tests {
             let p = eval(i as f64 / 1000.0 * std::f64::consts::FRAC_PI_2).0;
             let d = out
                 .iter()
-                .map(|s| point_distance(s, p))
+                .map(|s| distance_from_segment(s, p))
                 .fold(f64::INFINITY, f64::min);
             assert!(d <= 0.001, "deviation {d}");
         }

@@ -11,7 +11,7 @@
 
 use super::nodes::Nodes;
 use super::Element;
-use crate::geom::{point_distance, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
+use crate::geom::{distance_from_segment, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
 use crate::import::ImportWarning;
 use std::collections::{HashMap, HashSet};
 
@@ -329,7 +329,7 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
 
 /// True when `inner` lies on `outer` within `tol`.
 fn covers(outer: &Segment, inner: &Segment, tol: f64) -> bool {
-    let on = |p: Point| point_distance(outer, p) <= tol;
+    let on = |p: Point| distance_from_segment(outer, p) <= tol;
     match (outer, inner) {
         (Segment::Line(_), Segment::Line(l)) => on(l.start) && on(l.end),
         (Segment::Arc(a), Segment::Arc(b)) => {

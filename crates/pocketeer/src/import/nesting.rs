@@ -17,8 +17,8 @@ use super::error::ImportError;
 use super::self_crossing::make_simple;
 use crate::geom::Source;
 use crate::geom::{
-    cluster_points, intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket, Point,
-    Segment, Tolerance, WindingIndex,
+    cluster_points, distance_from_segment, intersect, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket,
+    Point, Segment, Tolerance, WindingIndex,
 };
 use crate::import::ImportWarning;
 use crate::union_find::UnionFind;
@@ -346,7 +346,7 @@ fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Toleran
         if locator.contours[outer]
             .segments
             .iter()
-            .any(|s| point_distance(s, p) <= tol.join.max(tol.eps))
+            .any(|s| distance_from_segment(s, p) <= tol.join.max(tol.eps))
         {
             continue;
         }
@@ -423,7 +423,7 @@ fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
         let (a, b) = (&pieces[i], &pieces[j]);
         let same_ends = (a.start().distance(b.start()) <= r && a.end().distance(b.end()) <= r)
             || (a.start().distance(b.end()) <= r && a.end().distance(b.start()) <= r);
-        if same_ends && point_distance(b, a.point_at(0.5)) <= r {
+        if same_ends && distance_from_segment(b, a.point_at(0.5)) <= r {
             keep[j] = false;
         }
     }

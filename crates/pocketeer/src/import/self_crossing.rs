@@ -6,7 +6,7 @@
 //! removed (and reported); any other self-crossing is refused with its coordinates.
 
 use crate::geom::{
-    intersect, point_distance, Aabb, BoxIndex, Contour, Intersection, Line, Point, Segment, Tolerance,
+    distance_from_segment, intersect, Aabb, BoxIndex, Contour, Intersection, Line, Point, Segment, Tolerance,
 };
 
 /// A loop cut off by a self-crossing is a sliver when its extent is at most this many join
@@ -101,7 +101,7 @@ fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Interse
 fn lobe_between(a: &Segment, sa: (f64, f64), b: &Segment, sb: (f64, f64), tol: &Tolerance) -> bool {
     let width = tol.crossing();
     let apart = |s: &Segment, (t0, t1): (f64, f64), other: &Segment| {
-        (t1 - t0) * s.length() > width && point_distance(other, s.point_at(0.5 * (t0 + t1))) > width
+        (t1 - t0) * s.length() > width && distance_from_segment(other, s.point_at(0.5 * (t0 + t1))) > width
     };
     apart(a, sa, b) || apart(b, sb, a)
 }

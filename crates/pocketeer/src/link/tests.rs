@@ -2,7 +2,7 @@
 use super::*;
 use crate::clear::{plan_pocket, ClearParams};
 use crate::geom::Pocket;
-use crate::geom::{point_distance, Contour};
+use crate::geom::{distance_from_segment, Contour};
 use crate::toolpath::Move;
 
 fn params(entry: Entry) -> LinkParams {
@@ -175,7 +175,7 @@ fn wall_sides(path: &Toolpath, pocket: &Pocket, z: f64) -> (f64, f64) {
                 let c = s.point_at(t);
                 let (d, w) = walls
                     .iter()
-                    .map(|w| (point_distance(w, c), crate::geom::closest_point(w, c)))
+                    .map(|w| (distance_from_segment(w, c), crate::geom::closest_point(w, c)))
                     .fold((f64::INFINITY, c), |a, b| if b.0 < a.0 { b } else { a });
                 if (d - 3.0).abs() < 1e-3 {
                     if s.tangent_at(t).cross(w - c) < 0.0 {

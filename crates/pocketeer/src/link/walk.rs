@@ -2,7 +2,7 @@
 //! moves along them.
 
 use crate::clear::Path;
-use crate::geom::{closest_param, point_distance, Point, Segment};
+use crate::geom::{closest_param, distance_from_segment, Point, Segment};
 use crate::toolpath::{Feed, Point3, Toolpath};
 
 /// The segments of `path` as the tool follows them: closed paths start at their point nearest
@@ -25,7 +25,7 @@ pub fn walk_from(path: &Path, from: Point, reverse: bool, eps: f64) -> Vec<Segme
     }
     let (mut best, mut best_d) = (0, f64::INFINITY);
     for (i, s) in oriented.iter().enumerate() {
-        let d = point_distance(s, from);
+        let d = distance_from_segment(s, from);
         if d < best_d {
             (best, best_d) = (i, d);
         }
@@ -51,7 +51,7 @@ pub fn walk_from(path: &Path, from: Point, reverse: bool, eps: f64) -> Vec<Segme
 pub fn distance_to(path: &Path, p: Point) -> f64 {
     path.segments
         .iter()
-        .map(|s| point_distance(s, p))
+        .map(|s| distance_from_segment(s, p))
         .fold(f64::INFINITY, f64::min)
 }
 

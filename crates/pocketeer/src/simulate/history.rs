@@ -7,7 +7,7 @@
 //! the moves found there exactly.
 
 use super::gcode::{Motion, ProgramMove};
-use crate::geom::{closest_param, point_distance, Point, Vector};
+use crate::geom::{closest_param, distance_from_segment, Point, Vector};
 use std::collections::HashMap;
 
 /// The feed moves of a program below the stock top, indexed by place.
@@ -74,7 +74,9 @@ impl<'a> CutHistory<'a> {
                 for &k in list.iter().take_while(|&&k| (k as usize) < before) {
                     let m = &self.moves[k as usize];
                     let f = m.footprint();
-                    if point_distance(&f, q) <= r + SLACK && m.point_at(closest_param(&f, q)).z <= z + 1e-4 {
+                    if distance_from_segment(&f, q) <= r + SLACK
+                        && m.point_at(closest_param(&f, q)).z <= z + 1e-4
+                    {
                         return true;
                     }
                 }

@@ -4,7 +4,7 @@
 //! geometric epsilon `eps` in millimetres, so vertical lines and tiny or huge coordinates are
 //! treated alike.
 
-use super::{closest_param, point_distance, Arc, Line, Point, Segment};
+use super::{closest_param, distance_from_segment, Arc, Line, Point, Segment};
 use std::f64::consts::TAU;
 
 /// One place where two segments meet.
@@ -386,7 +386,7 @@ fn end_on_other(a: &Segment, b: &Segment, eps: f64) -> Intersections {
             Segment::Line(l) => l.signed_distance(p).abs(),
             Segment::Arc(c) => (p.distance(c.center) - c.radius).abs(),
         };
-        off <= eps && point_distance(s, p) <= eps
+        off <= eps && distance_from_segment(s, p) <= eps
     };
     let ends = |s: &Segment| [(0.0, s.start()), (1.0, s.end())];
     if let Some((ta, point)) = ends(a).into_iter().find(|&(_, p)| near(b, p)) {
