@@ -15,6 +15,8 @@
 //! The geometry, distances and region test here are written for this test alone; only the
 //! grouping of samples uses the library (`geom::cluster_points`, which the offset does not).
 
+#[path = "../../pocketeer/tests/common/corpus.rs"]
+mod corpus;
 mod judge;
 
 use judge::*;
@@ -381,23 +383,7 @@ fn offsets_of_the_judged_kinds_of_drawing_match_an_independent_erosion() {
 #[test]
 #[ignore]
 fn corpus_offsets_match_an_independent_erosion() {
-    // Asked for by name (it is ignored otherwise): without its folder it has nothing to
-    // judge, which is a failure, not a pass.
-    let root =
-        std::env::var_os("POCKETEER_CORPUS").expect("POCKETEER_CORPUS names the folder of drawings to judge");
-    let mut files = Vec::new();
-    let mut dirs = vec![std::path::PathBuf::from(root)];
-    while let Some(d) = dirs.pop() {
-        for e in std::fs::read_dir(&d).expect("corpus folder").flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                dirs.push(p);
-            } else if p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf")) {
-                files.push(p);
-            }
-        }
-    }
-    files.sort();
+    let files = corpus::corpus_from_env();
     let dir = tempfile::tempdir().unwrap();
     let mut bad = Vec::new();
     let mut judged = 0;

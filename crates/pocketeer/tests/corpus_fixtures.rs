@@ -70,14 +70,11 @@ fn a_damaged_file_is_read_as_far_as_it_makes_sense() {
 
 #[test]
 fn every_fixture_imports_or_is_refused_with_a_message() {
-    for dir in ["corpus/cc0", "corpus/mit"] {
-        for entry in std::fs::read_dir(fixture(dir)).unwrap() {
-            let path = entry.unwrap().path();
-            let bytes = std::fs::read(&path).unwrap();
-            match analyze(&bytes, &ImportOptions::default()) {
-                Ok(a) => assert!(!a.nesting.pockets.is_empty(), "{}", path.display()),
-                Err(e) => assert!(!e.to_string().is_empty()),
-            }
+    for path in common::corpus::dxf_files(&fixture("corpus")) {
+        let bytes = std::fs::read(&path).unwrap();
+        match analyze(&bytes, &ImportOptions::default()) {
+            Ok(a) => assert!(!a.nesting.pockets.is_empty(), "{}", path.display()),
+            Err(e) => assert!(!e.to_string().is_empty()),
         }
     }
 }

@@ -9,13 +9,10 @@ use pocketeer::{analyze, ImportOptions};
 
 fn fixtures() -> Vec<Vec<u8>> {
     let mut out = Vec::new();
-    for dir in ["corpus/cc0", "corpus/mit"] {
-        for entry in std::fs::read_dir(fixture(dir)).unwrap() {
-            let path = entry.unwrap().path();
-            let bytes = std::fs::read(&path).unwrap();
-            if bytes.len() <= 60_000 {
-                out.push(bytes);
-            }
+    for path in common::corpus::dxf_files(&fixture("corpus")) {
+        let bytes = std::fs::read(&path).unwrap();
+        if bytes.len() <= 60_000 {
+            out.push(bytes);
         }
     }
     out

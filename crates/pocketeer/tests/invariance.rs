@@ -157,17 +157,7 @@ fn file_cases() -> Vec<Case> {
         env!("CARGO_MANIFEST_DIR"),
         "/../../examples/bracket.dxf"
     ))];
-    for dir in ["corpus/cc0", "corpus/mit"] {
-        let mut found: Vec<_> = std::fs::read_dir(common::fixture(dir))
-            .into_iter()
-            .flatten()
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")))
-            .collect();
-        found.sort();
-        files.extend(found);
-    }
+    files.extend(common::corpus::dxf_files(&common::fixture("corpus")));
     for f in files {
         let Ok(bytes) = std::fs::read(&f) else { continue };
         let Ok(a) = pocketeer::analyze(&bytes, &ImportOptions::default()) else {

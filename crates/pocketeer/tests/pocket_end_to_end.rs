@@ -157,23 +157,7 @@ mod random {
 #[test]
 #[ignore]
 fn corpus_drawings_are_cleared_cleanly() {
-    // Asked for by name (it is ignored otherwise): without its folder it has nothing to
-    // judge, which is a failure, not a pass.
-    let root =
-        std::env::var_os("POCKETEER_CORPUS").expect("POCKETEER_CORPUS names the folder of drawings to judge");
-    let mut files = Vec::new();
-    let mut dirs = vec![std::path::PathBuf::from(root)];
-    while let Some(d) = dirs.pop() {
-        for e in std::fs::read_dir(&d).expect("corpus folder").flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                dirs.push(p);
-            } else if p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf")) {
-                files.push(p);
-            }
-        }
-    }
-    files.sort();
+    let files = common::corpus::corpus_from_env();
     let mut bad = Vec::new();
     for f in &files {
         let Ok(analysis) = pocketeer::analyze(&std::fs::read(f).unwrap(), &Default::default()) else {

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod analysis;
+pub mod corpus;
 pub mod program;
 pub mod replay;
 pub mod shapes;
