@@ -296,3 +296,40 @@ fn a_spline_given_by_fit_points_passes_through_them() {
     // An interpolating cubic through 24 points of a circle stays very near the circle.
     assert!(close(pockets(&a)[0].0, 400.0 * PI, 1.0), "{:?}", pockets(&a));
 }
+
+/// A closed spline of degree 1 through `corners` (the first repeated at the end).
+fn closed_polygon_spline(layer: &str, corners: &[(f64, f64)]) -> Entity {
+    let n = corners.len() + 1;
+    let mut e = Entity::new("SPLINE", layer)
+        .g(70, 1)
+        .g(71, 1)
+        .g(72, n + 2)
+        .g(73, n);
+    let knots: Vec<f64> = std::iter::once(0.0)
+        .chain((0..n).map(|k| k as f64))
+        .chain(std::iter::once((n - 1) as f64))
+        .collect();
+    for k in knots {
+        e = e.g(40, k);
+    }
+    for &(x, y) in corners.iter().chain(&corners[..1]) {
+        e = e.g(10, x).g(20, y).g(30, 0.0);
+    }
+    e
+}
+
+/// Closed splines are whole contours: two that share a stretch (overlapping shapes in traced
+/// art) stay two closed contours, which nesting merges, instead of losing the shared stretch
+/// to duplicate removal and leaving an open chain.
+#[test]
+fn closed_splines_sharing_a_stretch_stay_closed_and_merge() {
+    let a = closed_polygon_spline("0", &[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+    let b = closed_polygon_spline("0", &[(10.0, 0.0), (20.0, 0.0), (20.0, 10.0), (10.0, 10.0)]);
+    let r = read(&Drawing::new(vec![a, b]));
+    assert!(r.chains.open.is_empty(), "{:?}", r.chains.open);
+    assert_eq!(r.chains.contours.len(), 2);
+    assert_eq!(r.chains.duplicates_dropped, 0);
+    let p = pockets(&r);
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(close(p[0].0, 200.0, 1e-6), "{p:?}");
+}

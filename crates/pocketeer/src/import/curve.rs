@@ -321,6 +321,15 @@ impl Nurbs {
         self.point_in_span(k, t)
     }
 
+    /// True when the curve ends where it starts, to within a millionth of a unit (writers
+    /// print closed splines' wrapped control points to their precision).
+    pub fn is_closed(&self) -> bool {
+        let (Some(&t0), Some(&t1)) = (self.knots.get(self.degree), self.knots.get(self.points.len())) else {
+            return false;
+        };
+        self.point(t0).distance(self.point(t1)) <= 1e-6
+    }
+
     /// The point at `t` of the polynomial piece on span `k` (de Boor's algorithm). Evaluating
     /// on an explicit span keeps both ends of a span on that span's piece, which matters where
     /// a knot of full multiplicity lets the curve jump.

@@ -8,11 +8,13 @@ use std::f64::consts::TAU;
 /// What reading one entity gave.
 pub enum Drawn {
     /// The curves it draws (possibly none, e.g. a one-point polyline); `closed` when they form
-    /// a closed contour by themselves, in order (a closed polyline).
+    /// a closed contour by themselves, in order (a closed polyline, a closed or periodic spline):
+    /// such a contour is whole by construction, and is never chained with other elements nor
+    /// cut by duplicate removal.
     Curves {
         /// The curves.
         curves: Vec<Curve>,
-        /// True for a closed polyline.
+        /// True for a closed entity.
         closed: bool,
     },
     /// An entity type that draws no outline (text, dimension, hatch, ...).
@@ -71,7 +73,16 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
         "ELLIPSE" => open(ellipse(&f)?),
         "LWPOLYLINE" => Ok(lwpolyline(e, &f)),
         "POLYLINE" => old_polyline(e, &f),
-        "SPLINE" => open(spline(&f)?),
+        "SPLINE" => {
+            let curves = spline(&f)?;
+            // Closed (bit 1) or periodic (bit 2), and the curve really comes back to its start.
+            let flagged = f.int_or(70, 0) & 3 != 0;
+            let closed = flagged
+                && curves
+                    .iter()
+                    .all(|c| matches!(c, Curve::Spline(s) if s.is_closed()));
+            Ok(Drawn::Curves { curves, closed })
+        }
         // Text, dimensions, hatches, meshes, solids, images, ...: no outline.
         _ => Ok(Drawn::Ignored),
     }
