@@ -103,17 +103,9 @@ fn polygon(vertices: &[Vertex]) -> Contour {
     Contour::new(segs)
 }
 
-fn counter_clockwise(c: Contour) -> Contour {
-    if c.is_ccw() {
-        c
-    } else {
-        c.reversed()
-    }
-}
-
 /// The bulged polygon of the fuzz input, counter-clockwise.
 fn outline(vertices: &[Vertex]) -> Contour {
-    counter_clockwise(polygon(vertices))
+    polygon(vertices).oriented(true)
 }
 
 /// The outline of the one pocket the importer finds in the bulged polygon taken in its own
@@ -123,7 +115,7 @@ fn imported(vertices: &[Vertex]) -> Option<Contour> {
     let [pocket] = &nesting.pockets[..] else {
         return None;
     };
-    Some(counter_clockwise(pocket.boundary.clone()))
+    Some(pocket.boundary.clone().oriented(true))
 }
 
 /// The verified loops of the imported outline alone at the fuzz input's distance.

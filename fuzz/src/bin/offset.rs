@@ -78,11 +78,7 @@ fn run(data: &[u8]) {
         }
         let boundary = pocket.boundary.clone();
         let segs = boundary.segments.clone();
-        let boundary = if boundary.is_ccw() {
-            boundary
-        } else {
-            boundary.reversed()
-        };
+        let boundary = boundary.oriented(true);
         let islands: Vec<Contour> = input
             .islands
             .iter()

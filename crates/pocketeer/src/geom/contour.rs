@@ -61,6 +61,24 @@ impl Contour {
         Contour::new(self.segments.iter().rev().map(Segment::reversed).collect())
     }
 
+    /// The contour run counter-clockwise when `ccw`, clockwise otherwise (itself when it
+    /// already runs that way).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Contour, Point};
+    /// let p = Point::new;
+    /// let cw = Contour::polygon(&[p(0.0, 0.0), p(0.0, 1.0), p(1.0, 1.0), p(1.0, 0.0)]);
+    /// assert!(cw.clone().oriented(true).is_ccw());
+    /// assert_eq!(cw.clone().oriented(false), cw);
+    /// ```
+    pub fn oriented(self, ccw: bool) -> Contour {
+        if self.is_ccw() == ccw {
+            self
+        } else {
+            self.reversed()
+        }
+    }
+
     /// Total length.
     pub fn length(&self) -> f64 {
         self.segments.iter().map(Segment::length).sum()

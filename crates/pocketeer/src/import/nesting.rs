@@ -249,11 +249,7 @@ impl Meetings {
                 // Alone, a contour bounds removed material on its inside exactly when its depth
                 // is even.
                 let want_ccw = depths[group[0]] % 2 == 0;
-                loops.push(if c.is_ccw() == want_ccw {
-                    c.clone()
-                } else {
-                    c.reversed()
-                });
+                loops.push(c.clone().oriented(want_ccw));
                 continue;
             }
             let pieces = boundary_pieces(contours, group, &self.cuts, removed, tol);

@@ -281,12 +281,7 @@ pub fn largest_inscribed_radius(pocket: &Pocket, tol: &Tolerance) -> Result<f64,
 /// outward for `d` < 0 (its inside dilated). Loops are counter-clockwise around material,
 /// clockwise around holes.
 pub fn offset_contour(contour: &Contour, d: f64, tol: &Tolerance) -> Result<Vec<Contour>, OffsetError> {
-    let ccw = if contour.is_ccw() {
-        contour.clone()
-    } else {
-        contour.reversed()
-    };
-    PreparedPocket::from_loops(vec![ccw]).offset(d, tol)
+    PreparedPocket::from_loops(vec![contour.clone().oriented(true)]).offset(d, tol)
 }
 
 /// The boundary of the region on the left of `contours` (where `inside` holds) eroded by `d`,
