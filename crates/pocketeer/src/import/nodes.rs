@@ -21,37 +21,29 @@ pub(super) struct Nodes {
 impl Nodes {
     pub(super) fn build(elements: &[Element], alive: &[bool], tol: &Tolerance) -> Nodes {
         let n = elements.len();
-        let ends: Vec<Point> = (0..2 * n)
-            .map(|k| {
-                if k % 2 == 0 {
-                    elements[k / 2].segment.start()
-                } else {
-                    elements[k / 2].segment.end()
-                }
-            })
-            .collect();
+        let end_point = |k: usize| {
+            let s = &elements[k / 2].segment;
+            if k % 2 == 0 {
+                s.start()
+            } else {
+                s.end()
+            }
+        };
         // Contours are chained within their layer only; dead elements' ends take no part.
         let live: Vec<usize> = (0..2 * n).filter(|&k| alive[k / 2]).collect();
-        let live_ends: Vec<Point> = live.iter().map(|&k| ends[k]).collect();
-        let cluster = cluster_points_by(&live_ends, tol.join.max(tol.eps), |i| elements[live[i] / 2].layer);
-        let mut root = vec![usize::MAX; 2 * n];
-        for (i, &k) in live.iter().enumerate() {
-            root[k] = cluster[i];
-        }
+        let ends: Vec<Point> = live.iter().map(|&k| end_point(k)).collect();
+        let cluster = cluster_points_by(&ends, tol.join.max(tol.eps), |i| elements[live[i] / 2].layer);
         let mut index: HashMap<usize, usize> = HashMap::new();
         let mut node_of = vec![usize::MAX; 2 * n];
         let mut sums: Vec<(f64, f64, usize)> = Vec::new();
-        for k in 0..2 * n {
-            if !alive[k / 2] {
-                continue;
-            }
-            let id = *index.entry(root[k]).or_insert_with(|| {
+        for (i, &k) in live.iter().enumerate() {
+            let id = *index.entry(cluster[i]).or_insert_with(|| {
                 sums.push((0.0, 0.0, 0));
                 sums.len() - 1
             });
             node_of[k] = id;
-            sums[id].0 += ends[k].x;
-            sums[id].1 += ends[k].y;
+            sums[id].0 += ends[i].x;
+            sums[id].1 += ends[i].y;
             sums[id].2 += 1;
         }
         let pos: Vec<Point> = sums
@@ -66,11 +58,9 @@ impl Nodes {
             largest_gap_at: Point::ORIGIN,
         };
         let mut moved = vec![0.0f64; nodes.pos.len()];
-        for k in 0..2 * n {
-            if alive[k / 2] {
-                let id = nodes.node_of[k];
-                moved[id] = moved[id].max(ends[k].distance(nodes.pos[id]));
-            }
+        for (i, &k) in live.iter().enumerate() {
+            let id = nodes.node_of[k];
+            moved[id] = moved[id].max(ends[i].distance(nodes.pos[id]));
         }
         for (id, &m) in moved.iter().enumerate() {
             // Rounding in the writer's coordinates is not a gap.

@@ -234,20 +234,15 @@ fn rapid_through_air(m: &ProgramMove, k: usize, history: &super::history::CutHis
         || vertical && (m.to.z >= m.from.z || history.cleared(k, m.to.xy(), m.to.z, r))
 }
 
-/// The pockets' prepared and walls, indexed for the gouge measure.
+/// The pockets prepared for the gouge measure: each one's walls and islands indexed.
 struct Walls {
     prepared: Vec<PreparedPocket>,
-    /// The walls and islands of each pocket.
-    each: Vec<SegmentIndex>,
 }
 
 impl Walls {
     fn new(pockets: &[Pocket]) -> Walls {
-        let segments =
-            |p: &Pocket| -> Vec<Segment> { p.contours().flat_map(|c| c.segments.iter().copied()).collect() };
         Walls {
             prepared: pockets.iter().map(PreparedPocket::new).collect(),
-            each: pockets.iter().map(|p| SegmentIndex::new(&segments(p))).collect(),
         }
     }
 
@@ -255,8 +250,8 @@ impl Walls {
     fn of_pocket_at(&self, p: Point) -> Option<&SegmentIndex> {
         self.prepared
             .iter()
-            .position(|pocket| pocket.contains(p))
-            .map(|i| &self.each[i])
+            .find(|pocket| pocket.contains(p))
+            .map(PreparedPocket::walls)
     }
 
     /// How far the disc of radius `r` moving along `seg` reaches beyond the walls of the pocket
@@ -273,9 +268,14 @@ impl Walls {
         let n = self.prepared.len();
         let inside = (0..n).find(|&i| self.prepared[i].contains(mid));
         let i = inside.or_else(|| {
-            (0..n).min_by(|&a, &b| self.each[a].distance(mid).total_cmp(&self.each[b].distance(mid)))
+            (0..n).min_by(|&a, &b| {
+                self.prepared[a]
+                    .distance(mid)
+                    .total_cmp(&self.prepared[b].distance(mid))
+            })
         })?;
-        let (prepared, walls) = (&self.prepared[i], &self.each[i]);
+        let prepared = &self.prepared[i];
+        let walls = prepared.walls();
         let g = if inside.is_some() {
             walls
                 .nearest_to_segment(seg, r + gouge_tolerance.max(0.0) + 1.0, tol.eps)
