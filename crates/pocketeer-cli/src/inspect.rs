@@ -3,6 +3,7 @@
 
 use crate::display::count;
 use pocketeer::geom::Point;
+use pocketeer::import::NearestGap;
 use pocketeer::Analysis;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -65,8 +66,20 @@ struct IslandRow {
     elements: usize,
 }
 
-/// A round join tolerance just above `gap`: 0.0084 → "0.009mm".
-fn suggest_tolerance(gap: f64) -> String {
+/// The flag that would close `gap`, when closing it is plausible (under a millimetre, farther
+/// merges separate shapes): `--close-gaps` when the two ends are unambiguously each other's,
+/// else `--join-tolerance`, which pairs nearest ends first.
+pub fn gap_flag(gap: NearestGap) -> Option<String> {
+    let flag = if gap.unambiguous {
+        "--close-gaps"
+    } else {
+        "--join-tolerance"
+    };
+    (gap.length <= 1.0).then(|| format!("{flag} {}", suggest_length(gap.length)))
+}
+
+/// A round length just above `gap`: 0.0084 → "0.009mm".
+fn suggest_length(gap: f64) -> String {
     let mut step = 1e-6;
     while step * 10.0 <= gap {
         step *= 10.0;
@@ -103,11 +116,13 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
     warnings.extend(ch.warnings.iter().map(ToString::to_string));
     for o in &ch.open {
         let hint = match o.nearest_gap {
-            Some(g) if g <= 0.1 => format!(
-                "; the nearest free end is {g:.4} mm away: --join-tolerance {} would join it",
-                suggest_tolerance(g)
-            ),
-            Some(g) => format!("; the nearest free end is {g:.3} mm away"),
+            Some(g) => match gap_flag(g) {
+                Some(flag) => format!(
+                    "; the nearest free end is {:.4} mm away: {flag} would join it",
+                    g.length
+                ),
+                None => format!("; the nearest free end is {:.3} mm away", g.length),
+            },
             None => String::new(),
         };
         warnings.push(format!(
@@ -165,7 +180,7 @@ impl Report {
                 elements: o.elements.len(),
                 start: o.start,
                 end: o.end,
-                nearest_gap_mm: o.nearest_gap,
+                nearest_gap_mm: o.nearest_gap.map(|g| g.length),
             })
             .collect();
         let pockets = a

@@ -51,9 +51,13 @@ struct DrawingArgs {
     /// The drawing's unit when it declares none, or to override what it declares (mm, in, ...).
     #[arg(long)]
     units: Option<Units>,
-    /// End points closer than this are joined (a length: 0.001, 0.01mm, 0.0001in).
+    /// Free end points closer than this are moved to meet (a length: 0.001, 0.01mm, 0.0001in).
     #[arg(long, default_value = "0.001", value_parser = length::parse_nonneg_length, allow_hyphen_values = true)]
     join_tolerance: f64,
+    /// Gaps up to this length between two free ends, each the other's nearest by far, are
+    /// closed with a straight segment and reported; 0 closes none.
+    #[arg(long, default_value = "0.05mm", value_parser = length::parse_nonneg_length, allow_hyphen_values = true)]
+    close_gaps: f64,
     /// Ignore open chains even where they surround closed contours (refused by default: such a
     /// chain is most likely a pocket outline with a gap).
     #[arg(long)]
@@ -95,6 +99,7 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
         layers: args.layers.clone(),
         units: args.units,
         join_tolerance: args.join_tolerance,
+        close_gaps: args.close_gaps,
         ignore_open: args.ignore_open,
     };
     pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}{}", advice(&e))))
@@ -105,12 +110,16 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
 fn advice(e: &pocketeer::ImportError) -> String {
     use pocketeer::ImportError;
     match e {
-        ImportError::NoClosedContour { .. } => "; close the outline or raise --join-tolerance".into(),
+        ImportError::NoClosedContour { gap, .. } => format!(
+            "; close the outline{}",
+            gap.and_then(inspect::gap_flag)
+                .map(|f| format!(" or pass {f}"))
+                .unwrap_or_default()
+        ),
         ImportError::OpenOutline { gap, .. } => format!(
             "; close it{}, leave its layer out with --layers, or pass --ignore-open",
-            // Joining ends farther apart than a millimetre merges separate shapes.
-            gap.filter(|g| *g <= 1.0)
-                .map(|g| format!(" or raise --join-tolerance above {g:.4} mm"))
+            gap.and_then(inspect::gap_flag)
+                .map(|f| format!(" or pass {f}"))
                 .unwrap_or_default()
         ),
         _ => String::new(),

@@ -418,7 +418,7 @@ fn small_words_read_right() {
 }
 
 #[test]
-fn a_refusal_never_suggests_a_join_tolerance_over_a_millimetre() {
+fn a_refusal_never_suggests_closing_a_gap_over_a_millimetre() {
     let dir = tempfile::tempdir().unwrap();
     let drawing = dir.path().join("gap.dxf");
     // An outline round an island with a 5 mm gap.
@@ -435,16 +435,17 @@ fn a_refusal_never_suggests_a_join_tolerance_over_a_millimetre() {
     let err = text(&res.stderr);
     assert_eq!(res.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("does not close") && !err.contains("--join-tolerance"),
+        err.contains("does not close") && !err.contains("--join-tolerance") && !err.contains("--close-gaps"),
         "{err}"
     );
     assert!(err.contains("--layers, or pass --ignore-open"), "{err}");
-    // A gap of half a millimetre: the tolerance that would close it is worth naming.
+    // A gap of half a millimetre, no other free end near: the gap length that would bridge it
+    // is worth naming.
     let near: &[(f64, f64)] = &[(0.5, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0), (0.0, 0.0)];
     std::fs::write(&drawing, dxf(&[(near, false)], &[(30.0, 20.0, 6.0)], 4)).unwrap();
     let res = pocket(&drawing, &dir.path().join("gap.nc"), &[]);
     let err = text(&res.stderr);
-    assert!(err.contains("or raise --join-tolerance above 0.5000 mm"), "{err}");
+    assert!(err.contains("or pass --close-gaps 0.6mm"), "{err}");
 }
 
 #[test]

@@ -4,12 +4,14 @@
 //! [`Chains`]: closed contours, open chains with their free ends, counts of what was dropped
 //! and joined, and [`ImportWarning`]s.
 //!
-//! End points closer than the join tolerance become one node, and the elements are moved onto
-//! it (no sliver is added). Duplicates (the same element drawn twice, or one lying on another)
+//! End points within the coincidence distance are one node ([`super::nodes`]); free ends are
+//! then joined in pairs, snapped within the join tolerance or bridged by a straight segment
+//! ([`super::free_ends`]). Duplicates (the same element drawn twice, or one lying on another)
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
-use super::nodes::Nodes;
+use super::free_ends::{join_free_ends, UNAMBIGUOUS};
+use super::nodes::{node_distance, Nodes};
 use super::Element;
 use crate::geom::{distance_from_segment, Aabb, Arc, BoxIndex, Contour, Line, Point, Segment, Tolerance};
 use crate::import::ImportWarning;
@@ -37,9 +39,22 @@ pub struct OpenChain {
     pub end: Point,
     /// The drawing elements of the chain.
     pub elements: Vec<usize>,
-    /// Distance from a free end of this chain to the nearest other free end on its layer (its
-    /// own other end included): the join tolerance that would close the gap.
-    pub nearest_gap: Option<f64>,
+    /// The chain's segments in order from `start` to `end`, ends moved onto their nodes
+    /// (bridged gaps included).
+    pub segments: Vec<Segment>,
+    /// The nearest other free end on its layer to an end of this chain (its own other end
+    /// included).
+    pub nearest_gap: Option<NearestGap>,
+}
+
+/// The gap from an open chain's end to the nearest other free end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NearestGap {
+    /// Its width, mm: a join tolerance above it joins the two ends.
+    pub length: f64,
+    /// True when no third free end lies within five times the width of either end: a
+    /// gap-closing length above it bridges the gap.
+    pub unambiguous: bool,
 }
 
 /// The result of chaining.
@@ -64,15 +79,54 @@ pub struct Chains {
 /// End `0` (start) or `1` (end) of an element.
 pub(super) type End = (usize, u8);
 
-/// Joins `elements` into closed contours, per layer.
-pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
+/// Joins `elements` into closed contours, per layer: ends within the coincidence distance are
+/// one node, free ends within the join tolerance `tol.join` are snapped together, and free
+/// ends up to `close_gaps` apart that are unambiguously each other's (see
+/// [`super::free_ends`]) are bridged by a straight segment, reported as
+/// [`ImportWarning::GapBridged`]. `close_gaps` 0 bridges nothing.
+///
+/// ```
+/// use pocketeer::geom::{Line, Point, Segment, Tolerance};
+/// use pocketeer::import::{chain, Element};
+/// let p = [(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.02, 10.0)];
+/// let elements: Vec<Element> = (0..3)
+///     .map(|k| Element {
+///         segment: Segment::Line(Line::new(Point::new(p[k].0, p[k].1), Point::new(p[k + 1].0, p[k + 1].1))),
+///         layer: 0,
+///         source: k,
+///         closed_group: None,
+///     })
+///     .chain([Element {
+///         segment: Segment::Line(Line::new(Point::new(0.0, 9.98), Point::new(0.0, 0.0))),
+///         layer: 0,
+///         source: 3,
+///         closed_group: None,
+///     }])
+///     .collect();
+/// let tol = Tolerance::for_scale(10.0, 0.001);
+/// assert_eq!(chain(&elements, &tol, 0.05).contours.len(), 1);
+/// assert_eq!(chain(&elements, &tol, 0.0).open.len(), 1);
+/// ```
+pub fn chain(elements: &[Element], tol: &Tolerance, close_gaps: f64) -> Chains {
     let mut out = Chains::default();
     let mut alive = vec![true; elements.len()];
     take_closed_polylines(elements, &mut alive, tol, &mut out);
     out.duplicates_dropped = drop_covered(elements, &mut alive, tol);
     take_full_circles(elements, &mut alive, tol, &mut out);
 
-    let nodes = Nodes::build(elements, &alive, tol);
+    let mut nodes = Nodes::build(elements, &alive, tol);
+    // An element whose ends fall into one node has no length worth keeping, unless it is long
+    // (an arc of almost 360°), which closes on itself.
+    for (i, e) in elements.iter().enumerate() {
+        if alive[i]
+            && nodes.node((i, 0)) == nodes.node((i, 1))
+            && e.segment.length() <= 4.0 * node_distance(tol)
+        {
+            alive[i] = false;
+            out.zero_length_dropped += 1;
+        }
+    }
+    let bridges = join_free_ends(elements, &alive, &mut nodes, tol.join, close_gaps);
     out.gaps_closed = nodes.gaps_closed;
     out.largest_gap = nodes.largest_gap;
     if nodes.gaps_closed > 0 {
@@ -82,23 +136,32 @@ pub fn chain(elements: &[Element], tol: &Tolerance) -> Chains {
             at: nodes.largest_gap_at,
         });
     }
-    // An element whose ends fall into one node has no length worth keeping, unless it is long
-    // (an arc of almost 360°), which closes on itself.
-    for (i, e) in elements.iter().enumerate() {
-        if alive[i]
-            && nodes.node((i, 0)) == nodes.node((i, 1))
-            && e.segment.length() <= 4.0 * tol.join.max(tol.eps)
-        {
-            alive[i] = false;
-            out.zero_length_dropped += 1;
-        }
+    let drawn = elements.len();
+    let mut all = std::borrow::Cow::Borrowed(elements);
+    for b in &bridges {
+        let (from, to) = (nodes.point(b.from), nodes.point(b.to));
+        out.warnings.push(ImportWarning::GapBridged {
+            length: from.distance(to),
+            from,
+            to,
+        });
+        let e = &elements[b.from.0];
+        all.to_mut().push(Element {
+            segment: Segment::Line(Line::new(from, to)),
+            layer: e.layer,
+            source: e.source,
+            closed_group: None,
+        });
+        nodes.attach(nodes.node(b.from), nodes.node(b.to));
+        alive.push(true);
     }
+    let elements = &all[..];
     let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
     let mut used = vec![false; elements.len()];
     for first in 0..elements.len() {
         if alive[first] && !used[first] {
             let (walk, closed) = walk_from(first, &partner, &mut used);
-            add_walk(elements, &walk, closed, &nodes, &mut out);
+            add_walk(elements, drawn, &walk, closed, &nodes, &mut out);
         }
     }
     measure_gaps(&mut out.open);
@@ -122,12 +185,14 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
     for members in groups.values() {
         let segs: Vec<Segment> = members.iter().map(|&i| elements[i].segment).collect();
         let length: f64 = segs.iter().map(Segment::length).sum();
-        if length <= tol.join {
+        if length <= node_distance(tol) {
             out.zero_length_dropped += members.len();
             continue;
         }
         let contour = Contour::new(close_ring(segs));
-        if contour.signed_area().abs() <= tol.join * length && runs_back_over_itself(&contour.segments, tol) {
+        if contour.signed_area().abs() <= node_distance(tol) * length
+            && runs_back_over_itself(&contour.segments, tol)
+        {
             // Drawn there and back again: a line, not an outline.
             out.warnings.push(ImportWarning::NoArea {
                 elements: members.len(),
@@ -150,7 +215,7 @@ fn take_full_circles(elements: &[Element], alive: &mut [bool], tol: &Tolerance, 
         if let Segment::Arc(a) = e.segment {
             if alive[i] && a.is_full_circle() {
                 alive[i] = false;
-                if a.radius <= tol.join {
+                if a.radius <= node_distance(tol) {
                     out.zero_length_dropped += 1;
                 } else {
                     out.contours.push(ChainedContour {
@@ -202,8 +267,16 @@ fn walk_from(first: usize, partner: &HashMap<End, End>, used: &mut [bool]) -> (V
 }
 
 /// A walk as contours (split where it passes a node twice) when it closes, else as an open
-/// chain with its free ends.
-fn add_walk(elements: &[Element], walk: &[(usize, bool)], closed: bool, nodes: &Nodes, out: &mut Chains) {
+/// chain with its free ends. Elements from `drawn` on are bridges, not drawing elements.
+fn add_walk(
+    elements: &[Element],
+    drawn: usize,
+    walk: &[(usize, bool)],
+    closed: bool,
+    nodes: &Nodes,
+    out: &mut Chains,
+) {
+    let drawing_elements = |w: &[(usize, bool)]| w.iter().map(|w| w.0).filter(|&i| i < drawn).collect();
     let layer = elements[walk[0].0].layer;
     if closed {
         for lp in split_at_repeated_nodes(walk, nodes) {
@@ -214,18 +287,20 @@ fn add_walk(elements: &[Element], walk: &[(usize, bool)], closed: bool, nodes: &
             out.contours.push(ChainedContour {
                 contour: Contour::new(segs),
                 layer,
-                elements: lp.iter().map(|w| w.0).collect(),
+                elements: drawing_elements(&lp),
             });
         }
     } else {
-        let (s, e) = (walk[0], walk[walk.len() - 1]);
-        let start = nodes.point(if s.1 { (s.0, 1) } else { (s.0, 0) });
-        let end = nodes.point(if e.1 { (e.0, 0) } else { (e.0, 1) });
+        let segments: Vec<Segment> = walk
+            .iter()
+            .map(|&(i, rev)| snapped(&elements[i].segment, rev, i, nodes))
+            .collect();
         out.open.push(OpenChain {
             layer,
-            start,
-            end,
-            elements: walk.iter().map(|w| w.0).collect(),
+            start: segments[0].start(),
+            end: segments[segments.len() - 1].end(),
+            elements: drawing_elements(walk),
+            segments,
             nearest_gap: None,
         });
     }
@@ -239,25 +314,41 @@ fn measure_gaps(open: &mut [OpenChain]) {
         .collect();
     let boxes: Vec<Aabb> = ends.iter().map(|e| Aabb::from_points(e.1, e.1)).collect();
     let index = BoxIndex::new(&boxes);
-    for (k, o) in open.iter_mut().enumerate() {
-        let mut best: Option<f64> = None;
-        for (me, p) in [(2 * k, o.start), (2 * k + 1, o.end)] {
-            // Grow the search box until it finds another end or covers a drawing-sized area.
-            let mut r = 1e-3;
-            while r < 1e4 {
-                let near = index
-                    .intersecting(&Aabb::from_points(p, p).inflated(r))
-                    .filter(|&e| e != me && ends[e].0 == o.layer)
-                    .map(|e| ends[e].1.distance(p))
-                    .fold(None, |b: Option<f64>, d| Some(b.map_or(d, |b| b.min(d))));
-                if let Some(d) = near {
-                    best = Some(best.map_or(d, |b| b.min(d)));
-                    break;
-                }
-                r *= 10.0;
+    // The nearest end to end `me` other than those in `not`, growing the search box until it
+    // finds one or covers a drawing-sized area.
+    let nearest = |me: usize, not: &[usize]| {
+        let (layer, p) = ends[me];
+        let mut r = 1e-3;
+        while r < 1e4 {
+            let near = index
+                .intersecting(&boxes[me].inflated(r))
+                .filter(|e| !not.contains(e) && ends[*e].0 == layer)
+                .map(|e| (ends[e].1.distance(p), e))
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if near.is_some_and(|(d, _)| d <= r) {
+                return near;
             }
+            r *= 10.0;
         }
-        o.nearest_gap = best;
+        None
+    };
+    let gaps: Vec<Option<NearestGap>> = (0..open.len())
+        .map(|k| {
+            let best = [2 * k, 2 * k + 1]
+                .into_iter()
+                .filter_map(|me| nearest(me, &[me]).map(|(d, other)| (d, me, other)))
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            best.map(|(d, me, other)| {
+                let third = |e: usize| nearest(e, &[me, other]).map_or(f64::INFINITY, |t| t.0);
+                NearestGap {
+                    length: d,
+                    unambiguous: third(me).min(third(other)) >= UNAMBIGUOUS * d,
+                }
+            })
+        })
+        .collect();
+    for (o, g) in open.iter_mut().zip(gaps) {
+        o.nearest_gap = g;
     }
 }
 
@@ -300,7 +391,7 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
         .enumerate()
         .map(|(i, e)| {
             if alive[i] {
-                e.segment.bbox().inflated(tol.join)
+                e.segment.bbox().inflated(node_distance(tol))
             } else {
                 Aabb::EMPTY
             }
@@ -315,9 +406,11 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
             if i == j || !alive[i] || elements[i].layer != e.layer {
                 continue;
             }
-            let covered = covers(&elements[i].segment, &e.segment, tol.join);
+            // Within the node distance, not the join tolerance: a short element beside a long
+            // one is part of the outline, however high the tolerance is raised.
+            let covered = covers(&elements[i].segment, &e.segment, node_distance(tol));
             // Of two equal elements, keep the first.
-            if covered && (i < j || !covers(&e.segment, &elements[i].segment, tol.join)) {
+            if covered && (i < j || !covers(&e.segment, &elements[i].segment, node_distance(tol))) {
                 alive[j] = false;
                 dropped += 1;
                 break;
@@ -438,7 +531,7 @@ fn runs_back_over_itself(segs: &[Segment], tol: &Tolerance) -> bool {
     segs.iter().enumerate().all(|(i, s)| {
         segs.iter()
             .enumerate()
-            .any(|(j, o)| i != j && covers(o, s, tol.join))
+            .any(|(j, o)| i != j && covers(o, s, node_distance(tol)))
     })
 }
 

@@ -152,12 +152,17 @@ pub enum ImportError {
         open: usize,
         /// The free ends of the first five.
         ends: Vec<(Point, Point)>,
+        /// The narrowest gap between free ends.
+        gap: Option<crate::import::NearestGap>,
     },
-    /// An open chain surrounds closed contours: most likely a pocket outline that does not close.
+    /// An open chain that would close across a small gap of its own surrounds closed contours
+    /// or lies inside one: most likely an outline that does not close.
     #[error(
-        "the open chain of {} on layer '{layer}' (free ends at {} and {}) surrounds {}: it looks like a pocket outline that does not close",
+        "the open chain of {} on layer '{layer}' (free ends at {} and {}) {}: it looks like {} outline that does not close",
         fmt_count(*.elements, "element", "elements"), .start, .end,
-        fmt_count(*.surrounded, "closed contour", "closed contours"),
+        if *.surrounded > 0 { format!("surrounds {}", fmt_count(*.surrounded, "closed contour", "closed contours")) }
+        else { "lies inside a closed contour".to_owned() },
+        if *.surrounded > 0 { "a pocket" } else { "an island" },
     )]
     OpenOutline {
         /// Layer of the chain.
@@ -168,10 +173,11 @@ pub enum ImportError {
         start: Point,
         /// Last free end.
         end: Point,
-        /// How many closed contours lie inside its extent.
+        /// How many closed contours it would enclose, closed across its gap (0: it lies inside
+        /// one).
         surrounded: usize,
         /// The gap to the nearest other free end.
-        gap: Option<f64>,
+        gap: Option<crate::import::NearestGap>,
     },
     /// A contour crosses or touches itself.
     #[error("the contour on layer '{layer}' crosses or touches itself at {}", .point)]

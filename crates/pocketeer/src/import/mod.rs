@@ -10,6 +10,7 @@ pub mod dxf;
 mod entities;
 pub mod error;
 mod expand;
+mod free_ends;
 pub mod nesting;
 mod nodes;
 // Public for the property tests, which check its repair on random contours; not an API.
@@ -19,7 +20,7 @@ pub mod units;
 mod warning;
 
 pub use analysis::{analyze, Analysis};
-pub use chain::{chain, ChainedContour, Chains, OpenChain};
+pub use chain::{chain, ChainedContour, Chains, NearestGap, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
 pub use nesting::{find_pockets, Nesting};
 pub use units::Units;
@@ -36,6 +37,10 @@ pub const MAX_COORDINATE: f64 = 1e8;
 /// Largest deviation of the arcs that replace an ellipse or spline, in millimetres.
 pub const CURVE_TOLERANCE: f64 = 0.001;
 
+/// Default for [`ImportOptions::close_gaps`], mm: far below what any cutter could tell, far
+/// above the rounding and curve-fitting errors that open real outlines.
+pub const DEFAULT_CLOSE_GAPS: f64 = 0.05;
+
 /// How to read a drawing.
 #[derive(Debug, Clone)]
 pub struct ImportOptions {
@@ -43,8 +48,11 @@ pub struct ImportOptions {
     pub layers: Option<Vec<String>>,
     /// The drawing's unit, overriding `$INSUNITS`; when both are absent, millimetres.
     pub units: Option<Units>,
-    /// Join tolerance in millimetres.
+    /// Join tolerance in millimetres: free ends this near are moved to meet.
     pub join_tolerance: f64,
+    /// Gaps between free ends up to this many millimetres, where each end is the other's
+    /// nearest by far, are closed with a straight segment; 0 closes none.
+    pub close_gaps: f64,
     /// Ignore open chains even where they surround closed contours (by default such a drawing
     /// is refused: the open chain is most likely a pocket outline that does not close).
     pub ignore_open: bool,
@@ -56,6 +64,7 @@ impl Default for ImportOptions {
             layers: None,
             units: None,
             join_tolerance: DEFAULT_JOIN_TOLERANCE,
+            close_gaps: DEFAULT_CLOSE_GAPS,
             ignore_open: false,
         }
     }

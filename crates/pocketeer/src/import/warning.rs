@@ -61,16 +61,26 @@ pub enum ImportWarning {
         /// Its x and y scale.
         scale: (f64, f64),
     },
-    /// End points that did not coincide exactly were joined.
+    /// End points that did not coincide exactly were moved to meet.
     #[error("{} between end points closed, the largest {largest:.6} mm at {at}",
         fmt_count(*.count, "gap", "gaps"))]
     GapsClosed {
         /// Nodes where ends were moved to meet.
         count: usize,
-        /// The largest distance an end was moved, mm.
+        /// The largest gap closed, mm (each end moved by half of it).
         largest: f64,
         /// Where that was.
         at: Point,
+    },
+    /// A gap between two free ends, each the other's nearest, closed with a straight segment.
+    #[error("gap of {length:.4} mm between free ends at {from} and {to} closed with a straight segment")]
+    GapBridged {
+        /// The gap's width, mm.
+        length: f64,
+        /// One end.
+        from: Point,
+        /// The other end.
+        to: Point,
     },
     /// A closed polyline drawn there and back again: a line, no outline.
     #[error("a closed polyline of {} at {at} encloses no area; ignored",
