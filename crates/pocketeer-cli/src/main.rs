@@ -10,7 +10,7 @@ mod preview;
 mod sanity;
 
 use clap::{Args, Parser, Subcommand};
-use pocketeer::import::Units;
+use pocketeer::import::{FillRule, Units};
 use pocketeer::ImportOptions;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -58,10 +58,24 @@ struct DrawingArgs {
     /// closed with a straight segment and reported; 0 closes none.
     #[arg(long, default_value = "0.05mm", value_parser = length::parse_nonneg_length, allow_hyphen_values = true)]
     close_gaps: f64,
+    /// How an outline that crosses or touches itself is filled: `evenodd` (crossing the outline
+    /// always changes inside to outside) or `nonzero` (a loop wound round twice stays filled).
+    #[arg(long, value_enum, default_value = "evenodd")]
+    fill: Fill,
+    /// Refuse an outline that crosses or touches itself, naming where, instead of filling it.
+    #[arg(long)]
+    strict: bool,
     /// Ignore open chains even where they surround closed contours (refused by default: such a
     /// chain is most likely a pocket outline with a gap).
     #[arg(long)]
     ignore_open: bool,
+}
+
+/// The fill rules, as the command line spells them.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Fill {
+    Evenodd,
+    Nonzero,
 }
 
 #[derive(Args)]
@@ -100,6 +114,11 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
         units: args.units,
         join_tolerance: args.join_tolerance,
         close_gaps: args.close_gaps,
+        fill: match args.fill {
+            Fill::Evenodd => FillRule::EvenOdd,
+            Fill::Nonzero => FillRule::NonZero,
+        },
+        strict: args.strict,
         ignore_open: args.ignore_open,
     };
     pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}{}", advice(&e))))

@@ -214,20 +214,28 @@ fn pocket_refusals_name_the_problem_and_keep_the_old_program() {
 }
 
 #[test]
-fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
+fn open_outlines_and_strict_figure_eights_are_refused_and_the_old_program_kept() {
     let dir = tempfile::tempdir().unwrap();
     let nc = dir.path().join("keep.nc");
     std::fs::write(&nc, "(keep me)\n").unwrap();
     let open: &[(f64, f64)] = &[(0.0, 0.0), (50.0, 0.0), (50.0, 40.0), (0.0, 40.0), (0.0, 1.0)];
     let eight: &[(f64, f64)] = &[(0.0, 0.0), (40.0, 30.0), (40.0, 0.0), (0.0, 30.0)];
     let cases = [
-        (dxf(&[(open, false)], &[(25.0, 20.0, 5.0)], 4), "does not close"),
-        (dxf(&[(eight, true)], &[], 4), "crosses or touches itself at (20"),
+        (
+            dxf(&[(open, false)], &[(25.0, 20.0, 5.0)], 4),
+            "does not close",
+            None,
+        ),
+        (
+            dxf(&[(eight, true)], &[], 4),
+            "crosses or touches itself at (20",
+            Some("--strict"),
+        ),
     ];
-    for (i, (text, message)) in cases.iter().enumerate() {
+    for (i, (text, message, flag)) in cases.iter().enumerate() {
         let drawing = dir.path().join(format!("bad{i}.dxf"));
         std::fs::write(&drawing, text).unwrap();
-        let res = run(&[
+        let mut args = vec![
             "pocket",
             drawing.to_str().unwrap(),
             "--tool-diameter",
@@ -238,7 +246,9 @@ fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
             "1",
             "-o",
             nc.to_str().unwrap(),
-        ]);
+        ];
+        args.extend(flag);
+        let res = run(&args);
         let stderr = String::from_utf8_lossy(&res.stderr);
         assert_eq!(res.status.code(), Some(2), "{stderr}");
         assert!(stderr.contains(message), "{stderr}");
@@ -246,6 +256,38 @@ fn open_outlines_and_figure_eights_are_refused_and_the_old_program_kept() {
         assert!(stderr.contains("layer 'parts'"), "{stderr}");
         assert_eq!(std::fs::read_to_string(&nc).unwrap(), "(keep me)\n");
     }
+}
+
+#[test]
+fn a_figure_eight_is_pocketed_as_two_triangles_with_the_repair_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("eight.nc");
+    let eight: &[(f64, f64)] = &[(0.0, 0.0), (40.0, 30.0), (40.0, 0.0), (0.0, 30.0)];
+    let drawing = dir.path().join("eight.dxf");
+    std::fs::write(&drawing, dxf(&[(eight, true)], &[], 4)).unwrap();
+    let res = run(&[
+        "pocket",
+        drawing.to_str().unwrap(),
+        "--tool-diameter",
+        "3",
+        "--stepover",
+        "1",
+        "--depth",
+        "1",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&res.stderr);
+    assert!(res.status.success(), "{stderr}");
+    assert!(
+        stderr.contains(
+            "crosses or touches itself at (20.0000, 15.0000): filled by the even-odd rule into 2 loops"
+        ),
+        "{stderr}"
+    );
+    assert!(stderr.contains("2 pockets,"), "{stderr}");
+    // The two loops meet where the outline crossed itself: that is the repair, not a merge.
+    assert!(!stderr.contains("merged"), "{stderr}");
 }
 
 #[test]

@@ -6,8 +6,8 @@ mod common;
 
 use common::analysis::*;
 use common::*;
-use pocketeer::import::{ImportError, ImportWarning};
-use pocketeer::{analyze, ImportOptions};
+use pocketeer::import::{FillRule, ImportError, ImportWarning};
+use pocketeer::{analyze, Analysis, ImportOptions};
 use std::f64::consts::PI;
 
 #[test]
@@ -167,21 +167,107 @@ fn an_island_touching_the_wall_stays_an_island() {
     assert!(close(p[0].0, 6000.0 - 100.0 * PI, 1e-6), "{p:?}");
 }
 
+fn outline(pts: &[(f64, f64)]) -> Drawing {
+    let pts: Vec<(f64, f64, f64)> = pts.iter().map(|&(x, y)| (x, y, 0.0)).collect();
+    Drawing::new(vec![lwpoly("0", &pts, true)])
+}
+
+fn filled_with(d: &Drawing, fill: FillRule) -> Analysis {
+    let opts = ImportOptions {
+        fill,
+        ..Default::default()
+    };
+    analyze(d.text().as_bytes(), &opts).unwrap()
+}
+
 #[test]
-fn a_figure_eight_is_refused_with_its_crossing_point() {
-    let eight = lwpoly(
-        "0",
-        &[
-            (0.0, 0.0, 0.0),
-            (10.0, 10.0, 0.0),
-            (10.0, 0.0, 0.0),
-            (0.0, 10.0, 0.0),
-        ],
-        true,
-    );
-    let err = read_err(&Drawing::new(vec![eight]));
+fn a_bow_tie_becomes_two_triangles_touching_at_its_crossing() {
+    let eight = outline(&[(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)]);
+    let a = read(&eight);
+    let p = pockets(&a);
+    assert_eq!(p.len(), 2, "{p:?}");
+    for (area, _, islands) in &p {
+        assert!(close(*area, 25.0, 1e-9) && islands.is_empty(), "{p:?}");
+    }
+    let filled: Vec<_> = a
+        .nesting
+        .warnings
+        .iter()
+        .filter_map(|w| match w {
+            ImportWarning::SelfCrossingFilled { at, loops, .. } => Some((at.clone(), *loops)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(filled.len(), 1, "{:?}", a.nesting.warnings);
+    assert_eq!(filled[0].1, 2);
+    assert_eq!(filled[0].0.len(), 1);
+    assert!(filled[0].0[0].distance(pocketeer::geom::Point::new(5.0, 5.0)) < 1e-9);
+    // --strict refuses it, naming the crossing.
+    let strict = ImportOptions {
+        strict: true,
+        ..Default::default()
+    };
+    let err = analyze(eight.text().as_bytes(), &strict).unwrap_err();
     assert!(matches!(err, ImportError::SelfCrossing { .. }));
     assert!(err.to_string().contains("(5.0000, 5.0000)"), "{err}");
+}
+
+#[test]
+fn an_outline_touching_itself_becomes_the_loops_it_bounds() {
+    // Two squares sharing a corner drawn as one outline.
+    let two = outline(&[
+        (0.0, 0.0),
+        (10.0, 0.0),
+        (10.0, 10.0),
+        (20.0, 10.0),
+        (20.0, 20.0),
+        (10.0, 20.0),
+        (10.0, 10.0),
+        (0.0, 10.0),
+    ]);
+    let p = pockets(&read(&two));
+    assert_eq!(p.len(), 2, "{p:?}");
+    assert!(p.iter().all(|q| close(q.0, 100.0, 1e-9)), "{p:?}");
+    // A notch whose tip touches the opposite edge: two quadrilaterals meeting at its tip.
+    let notch = outline(&[
+        (0.0, 0.0),
+        (20.0, 0.0),
+        (20.0, 10.0),
+        (12.0, 10.0),
+        (10.0, 0.0),
+        (8.0, 10.0),
+        (0.0, 10.0),
+    ]);
+    let p = pockets(&read(&notch));
+    assert_eq!(p.len(), 2, "{p:?}");
+    assert!(close(p[0].0 + p[1].0, 200.0 - 20.0, 1e-9), "{p:?}");
+}
+
+#[test]
+fn a_star_drawn_in_one_stroke_is_filled_by_the_rule_asked_for() {
+    // A pentagram: its centre pentagon is wound round twice.
+    let star: Vec<(f64, f64)> = (0..5)
+        .map(|k| {
+            let a = PI / 2.0 + k as f64 * 4.0 * PI / 5.0;
+            (50.0 * a.cos(), 50.0 * a.sin())
+        })
+        .collect();
+    let d = outline(&star);
+    let even = pockets(&filled_with(&d, FillRule::EvenOdd));
+    let nonzero = pockets(&filled_with(&d, FillRule::NonZero));
+    // Even-odd: five points round a hole (the centre pentagon an island, or five separate
+    // triangles touching at their corners); non-zero: the whole star, no hole.
+    let even_area: f64 = even.iter().map(|p| p.0).sum();
+    let nonzero_area: f64 = nonzero.iter().map(|p| p.0).sum();
+    // The inner pentagon's circumradius is R (cos 72° / cos 36°).
+    let r = 50.0 * (2.0 * PI / 5.0).cos() / (PI / 5.0).cos();
+    let pentagon = 2.5 * r * r * (2.0 * PI / 5.0).sin();
+    assert_eq!(nonzero.len(), 1, "{nonzero:?}");
+    assert!(nonzero[0].2.is_empty());
+    assert!(
+        close(nonzero_area - even_area, pentagon, 1e-6),
+        "{even_area} {nonzero_area} {pentagon}"
+    );
 }
 
 #[test]

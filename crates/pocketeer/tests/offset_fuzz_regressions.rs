@@ -11,6 +11,7 @@ mod offset_fuzz_inputs;
 use offset_fuzz_inputs::{Take, CASES};
 use pocketeer::geom::Pocket;
 use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Tolerance};
+use pocketeer::import::FillRule;
 
 /// A fuzz input's vertex: x, y in hundredths of a millimetre, the bulge of the edge to the
 /// next in 128ths (wider than the input's i8 so that a reversed -128 stays exact).
@@ -24,8 +25,6 @@ fn every_input_from_every_start_in_both_directions() {
                 Take::Outline => outline(&v),
                 Take::Imported => match imported(&v[..v.len().min(64)]) {
                     Some(boundary) => boundary,
-                    // Known: see `the_importers_verdict_does_not_depend_on_start_or_direction`.
-                    None if case.note == REFUSED_FROM_SOME_STARTS => continue,
                     None => panic!("{} ({label}): the importer refuses the outline", case.note),
                 },
             };
@@ -62,8 +61,6 @@ fn variants(vertices: &[(i16, i16, i8)]) -> Vec<(String, Vec<Vertex>)> {
     out
 }
 
-/// The label of the variant as the fuzz target drew it.
-const DRAWN: &str = "as given, from vertex 0";
 
 fn distance(input: u16) -> f64 {
     0.01 + input as f64 / 1000.0
@@ -134,19 +131,16 @@ fn imported_as_drawn(vertices: &[Vertex]) -> Contour {
     imported(vertices).expect("the importer takes the outline")
 }
 
-/// The table's one input that the importer takes only from some start vertices: the zigzag
-/// of 0.01 mm steps is refused as crossing itself at (2.57, 2.565) from 107 of its 128 starts
-/// and directions (a defect of the importer's self-crossing test, not of the offset).
+/// The table's input that the strict self-crossing test refuses from some start vertices only:
+/// the zigzag of 0.01 mm steps, crossing itself at (2.57, 2.565) from 107 of its 128 starts
+/// and directions.
 const REFUSED_FROM_SOME_STARTS: &str =
     "two arcs 0.008 and 0.006 mm in radius turning back by 173° at a joint, d = 0.5";
 
-/// The importer must take a drawn outline or refuse it whatever vertex it starts at and
-/// whichever way round it is drawn. Today it does not: the zigzag above, and the two circles
-/// drawn as semicircles touching at a neck (below), are refused as crossing themselves from
-/// some starts. Resolving self-crossing and self-touching outlines instead of refusing them
-/// (issue 17) is to make this pass; until then it is ignored, and fails when run.
+/// The importer takes a drawn outline whatever vertex it starts at and whichever way round it
+/// is drawn: the zigzag above, and the two circles drawn as semicircles touching at a neck
+/// (below), which the strict self-crossing test refuses from some starts only, are filled.
 #[test]
-#[ignore = "the importer's self-crossing verdict depends on the start vertex (issue 17)"]
 fn the_importers_verdict_does_not_depend_on_start_or_direction() {
     let zigzag = CASES
         .iter()
@@ -170,15 +164,24 @@ fn the_importers_verdict_does_not_depend_on_start_or_direction() {
     }
 }
 
-/// The importer's verdict on one contour.
+/// The importer's verdict on one contour, filled by the even-odd rule where it crosses itself.
 fn nesting_of(contour: Contour) -> Result<pocketeer::import::Nesting, pocketeer::ImportError> {
+    nesting_filled(contour, Some(FillRule::EvenOdd))
+}
+
+/// The importer's verdict on one contour, refusing it where it crosses itself when `fill` is
+/// `None`.
+fn nesting_filled(
+    contour: Contour,
+    fill: Option<FillRule>,
+) -> Result<pocketeer::import::Nesting, pocketeer::ImportError> {
     let tol = Tolerance::for_extent(&contour.bbox(), 0.001);
     let chained = pocketeer::import::ChainedContour {
         contour,
         layer: 0,
         elements: Vec::new(),
     };
-    pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol)
+    pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol, fill)
 }
 
 /// The fuzz input's round islands that lie inside `boundary` and clear of it.
@@ -244,9 +247,10 @@ fn big_bulge_outlines_keep_their_loop() {
 }
 
 /// A needle 130 mm long whose two sides are flat arcs bulging the same way 0.01 mm apart: the
-/// sides cross, and the importer refuses the outline with the place.
+/// sides cross, and the importer fills the outline naming the place, from every start (and
+/// refuses it there when strict).
 #[test]
-fn a_hair_thin_needle_of_flat_arcs_crosses_itself_and_is_refused() {
+fn a_hair_thin_needle_of_flat_arcs_crosses_itself_and_is_filled_or_refused() {
     let v = [
         (-12851, 128, 0),
         (1535, -31996, -51),
@@ -255,14 +259,19 @@ fn a_hair_thin_needle_of_flat_arcs_crosses_itself_and_is_refused() {
         (-12849, -128, -1),
         (-12851, -13056, 1),
     ];
+    let at_the_crossing = |p: &Point| (p.x + 127.995).abs() < 0.01 && (p.y + 64.64).abs() < 0.01;
     for (label, v) in variants(&v) {
-        match nesting_of(outline(&v)) {
-            Err(pocketeer::ImportError::SelfCrossing { point, .. }) => assert!(
-                (point.x + 127.995).abs() < 0.01 && (point.y + 64.64).abs() < 0.01,
-                "{label}: {point:?}"
-            ),
+        match nesting_filled(outline(&v), None) {
+            Err(pocketeer::ImportError::SelfCrossing { point, .. }) => {
+                assert!(at_the_crossing(&point), "{label}: {point:?}")
+            }
             other => panic!("{label}: expected a self-crossing refusal, got {other:?}"),
         }
+        let nesting = nesting_of(outline(&v)).unwrap();
+        let filled = nesting.warnings.iter().any(|w| {
+            matches!(w, pocketeer::import::ImportWarning::SelfCrossingFilled { at, .. } if at.iter().any(at_the_crossing))
+        });
+        assert!(filled, "{label}: {:?}", nesting.warnings);
     }
 }
 
@@ -294,10 +303,7 @@ fn a_line_shorter_than_rounding_pointing_back_is_a_point() {
         (21845, -6593, -128),
     ];
     for (label, v) in variants(&v) {
-        // Refused from some starts: see `the_importers_verdict_does_not_depend_on_start_or_direction`.
-        let Some(imported) = imported(&v).or_else(|| (label == DRAWN).then(|| imported_as_drawn(&v))) else {
-            continue;
-        };
+        let imported = imported_as_drawn(&v);
         let top = imported
             .segments
             .iter()
@@ -347,10 +353,7 @@ fn a_line_shorter_than_rounding_beside_an_island() {
         (21845, -6593, -128),
     ];
     for (label, v) in variants(&v) {
-        // Refused from some starts: see `the_importers_verdict_does_not_depend_on_start_or_direction`.
-        let Some(boundary) = imported(&v).or_else(|| (label == DRAWN).then(|| imported_as_drawn(&v))) else {
-            continue;
-        };
+        let boundary = imported_as_drawn(&v);
         let island = Contour::new(vec![Segment::Arc(Arc::new(
             Point::new(218.45, 41.17),
             0.1,

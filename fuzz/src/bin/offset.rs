@@ -69,7 +69,7 @@ fn run(data: &[u8]) {
             layer: 0,
             elements: Vec::new(),
         };
-        let Ok(regions) = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol) else {
+        let Ok(regions) = pocketeer::import::find_pockets(&[chained], &["0".to_string()], &tol, Some(pocketeer::import::FillRule::EvenOdd)) else {
             return;
         };
         let [pocket] = &regions.pockets[..] else { return };

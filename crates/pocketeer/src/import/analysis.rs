@@ -26,7 +26,8 @@ pub const BROKEN_OUTLINE_GAP: f64 = 0.1;
 /// Reads DXF bytes and finds the pockets in them.
 ///
 /// Fails when the file cannot be read, when no closed contour exists, when a broken outline
-/// lies round or inside closed contours, or when a contour crosses itself.
+/// lies round or inside closed contours, or (with [`ImportOptions::strict`]) when a contour
+/// crosses itself.
 pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, ImportError> {
     let drawing = read_drawing(bytes, options)?;
     let tolerance = drawing.tolerance(options.join_tolerance);
@@ -45,7 +46,8 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
     if !options.ignore_open {
         refuse_broken_outlines(&drawing, &chains)?;
     }
-    let nesting = super::find_pockets(&chains.contours, &drawing.layers, &tolerance)?;
+    let fill = (!options.strict).then_some(options.fill);
+    let nesting = super::find_pockets(&chains.contours, &drawing.layers, &tolerance, fill)?;
     Ok(Analysis {
         drawing,
         chains,

@@ -10,6 +10,7 @@ pub mod dxf;
 mod entities;
 pub mod error;
 mod expand;
+mod fill;
 mod free_ends;
 pub mod nesting;
 mod nodes;
@@ -22,6 +23,7 @@ mod warning;
 pub use analysis::{analyze, Analysis};
 pub use chain::{chain, ChainedContour, Chains, NearestGap, OpenChain};
 pub use error::{EntityRef, ImportError, Pos};
+pub use fill::FillRule;
 pub use nesting::{find_pockets, Nesting};
 pub use units::Units;
 pub use warning::ImportWarning;
@@ -53,6 +55,10 @@ pub struct ImportOptions {
     /// Gaps between free ends up to this many millimetres, where each end is the other's
     /// nearest by far, are closed with a straight segment; 0 closes none.
     pub close_gaps: f64,
+    /// How a contour that crosses or touches itself is filled.
+    pub fill: FillRule,
+    /// Refuse a contour that crosses or touches itself instead of filling it.
+    pub strict: bool,
     /// Ignore open chains even where they surround closed contours (by default such a drawing
     /// is refused: the open chain is most likely a pocket outline that does not close).
     pub ignore_open: bool,
@@ -65,6 +71,8 @@ impl Default for ImportOptions {
             units: None,
             join_tolerance: DEFAULT_JOIN_TOLERANCE,
             close_gaps: DEFAULT_CLOSE_GAPS,
+            fill: FillRule::EvenOdd,
+            strict: false,
             ignore_open: false,
         }
     }

@@ -14,6 +14,7 @@
 
 use super::chain::ChainedContour;
 use super::error::ImportError;
+use super::fill::FillRule;
 use super::self_crossing::make_simple;
 use crate::geom::Source;
 use crate::geom::{
@@ -67,14 +68,18 @@ struct SegRef {
     index: usize,
 }
 
-/// Nests `contours` into pockets. `layer_names` names layers in messages.
+/// Nests `contours` into pockets. `layer_names` names layers in messages. A contour that
+/// crosses or touches itself (other than in a sliver loop, removed) is filled by `fill`
+/// (see [`FillRule`]), or refused when `fill` is `None`.
 pub fn find_pockets(
     contours: &[ChainedContour],
     layer_names: &[String],
     tol: &Tolerance,
+    fill: Option<FillRule>,
 ) -> Result<Nesting, ImportError> {
     let mut warnings = Vec::new();
-    let simple = simplified(contours, layer_names, tol, &mut warnings)?;
+    let (simple, origin) = simplified(contours, layer_names, tol, fill, &mut warnings)?;
+    let drawn = contours.len();
     let contours = &simple[..];
     let meetings = Meetings::find(contours, tol);
     let crossing: HashSet<(usize, usize)> = meetings
@@ -92,7 +97,7 @@ pub fn find_pockets(
         &locator,
         tol,
     );
-    meetings.report(contours, &depths, layer_names, &mut warnings);
+    meetings.report(contours, &origin, &depths, layer_names, &mut warnings);
 
     // Greatest depth of the contours enclosing p (None outside all), read as "material removed
     // here" when even.
@@ -106,37 +111,70 @@ pub fn find_pockets(
     };
     let loops = meetings.loops(contours, &depths, &removed, tol, &mut warnings);
     let pockets = assemble(loops, &mut warnings);
+    // A contour filled into several loops is as deep as its outermost loop.
+    let mut drawn_depths = vec![usize::MAX; drawn];
+    for (k, &o) in origin.iter().enumerate() {
+        drawn_depths[o] = drawn_depths[o].min(depths[k]);
+    }
+    for d in &mut drawn_depths {
+        if *d == usize::MAX {
+            *d = 0;
+        }
+    }
     Ok(Nesting {
         pockets,
-        depths,
+        depths: drawn_depths,
         warnings,
     })
 }
 
-/// The contours made simple: a sliver loop where one crosses itself is removed with a warning,
-/// any other crossing of a contour with itself is refused.
+/// The contours made simple, and the drawn contour each came from: a sliver loop where one
+/// crosses itself is removed with a warning; a contour crossing or touching itself otherwise
+/// is filled into simple loops by `fill`, with a warning naming where, or refused without one.
 fn simplified(
     contours: &[ChainedContour],
     layer_names: &[String],
     tol: &Tolerance,
+    fill: Option<FillRule>,
     warnings: &mut Vec<ImportWarning>,
-) -> Result<Vec<ChainedContour>, ImportError> {
+) -> Result<(Vec<ChainedContour>, Vec<usize>), ImportError> {
     let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
     let mut simple = Vec::with_capacity(contours.len());
-    for c in contours {
-        let (contour, removed) = make_simple(&c.contour, tol).map_err(|x| ImportError::SelfCrossing {
-            layer: layer_name(c),
-            point: x.point,
-        })?;
-        for p in removed {
-            warnings.push(ImportWarning::SliverLoopRemoved {
-                layer: layer_name(c),
-                at: p,
-            });
+    let mut origin = Vec::with_capacity(contours.len());
+    for (k, c) in contours.iter().enumerate() {
+        match (make_simple(&c.contour, tol), fill) {
+            (Ok((contour, removed)), _) => {
+                for p in removed {
+                    warnings.push(ImportWarning::SliverLoopRemoved {
+                        layer: layer_name(c),
+                        at: p,
+                    });
+                }
+                simple.push(ChainedContour { contour, ..c.clone() });
+                origin.push(k);
+            }
+            (Err(x), None) => {
+                return Err(ImportError::SelfCrossing {
+                    layer: layer_name(c),
+                    point: x.point,
+                })
+            }
+            (Err(_), Some(rule)) => {
+                let (loops, at) = super::fill::fill(&c.contour, rule, tol);
+                warnings.push(ImportWarning::SelfCrossingFilled {
+                    layer: layer_name(c),
+                    rule,
+                    loops: loops.len(),
+                    at,
+                });
+                for contour in loops {
+                    simple.push(ChainedContour { contour, ..c.clone() });
+                    origin.push(k);
+                }
+            }
         }
-        simple.push(ChainedContour { contour, ..c.clone() });
     }
-    Ok(simple)
+    Ok((simple, origin))
 }
 
 /// Where contours meet one another: the cuts on each segment, the groups of contours that
@@ -199,16 +237,18 @@ impl Meetings {
 
     /// One warning per pair of contours that meet: merged where they overlap at one depth, cut
     /// back where one crosses the other.
+    /// Loops of one drawn contour (`origin`) meet where it crossed itself, reported already.
     fn report(
         &self,
         contours: &[ChainedContour],
+        origin: &[usize],
         depths: &[usize],
         layer_names: &[String],
         warnings: &mut Vec<ImportWarning>,
     ) {
         let mut reported = HashSet::new();
         for &(a, b, p) in &self.crossings {
-            if reported.insert((self.cluster[a], a.min(b), a.max(b))) {
+            if origin[a] != origin[b] && reported.insert((self.cluster[a], a.min(b), a.max(b))) {
                 let layer = |c: usize| {
                     layer_names
                         .get(contours[c].layer)
@@ -252,7 +292,16 @@ impl Meetings {
                 loops.push(c.clone().oriented(want_ccw));
                 continue;
             }
-            let pieces = boundary_pieces(contours, group, &self.cuts, removed, tol);
+            let members: Vec<&Contour> = group.iter().map(|&c| &contours[c].contour).collect();
+            let cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = group
+                .iter()
+                .enumerate()
+                .flat_map(|(g, &c)| {
+                    (0..contours[c].contour.segments.len())
+                        .filter_map(move |k| self.cuts.get(&(c, k)).map(|v| ((g, k), v.clone())))
+                })
+                .collect();
+            let pieces = boundary_pieces(&members, &cuts, removed, tol);
             let (stitched, lost) = stitch(pieces, tol);
             if lost > 0 {
                 warnings.push(ImportWarning::PiecesLost { pieces: lost });
@@ -355,18 +404,18 @@ fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Toleran
     inside > 0 && inside >= outside
 }
 
-/// Pieces of a group of crossing contours that have removed material on exactly one side,
-/// oriented with that material on their left.
-fn boundary_pieces(
-    contours: &[ChainedContour],
-    group: &[usize],
+/// Pieces of a group of crossing contours, cut where `cuts` says (by contour in `group` and
+/// segment), that have removed material on exactly one side, oriented with that material on
+/// their left.
+pub(super) fn boundary_pieces(
+    group: &[&Contour],
     cuts: &HashMap<(usize, usize), Vec<(f64, Point)>>,
     removed: &dyn Fn(Point) -> bool,
     tol: &Tolerance,
 ) -> Vec<Segment> {
     let mut pieces: Vec<Segment> = Vec::new();
-    for &c in group {
-        for (k, s) in contours[c].contour.segments.iter().enumerate() {
+    for (c, contour) in group.iter().enumerate() {
+        for (k, s) in contour.segments.iter().enumerate() {
             let mut at: Vec<(f64, Point)> = cuts.get(&(c, k)).cloned().unwrap_or_default();
             at.push((0.0, s.start()));
             at.push((1.0, s.end()));
@@ -432,7 +481,7 @@ fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
 
 /// Joins pieces end to start into closed loops (see [`crate::geom::stitch`]); ends closer
 /// than [`Tolerance::crossing`] are one node. Returns the loops and how many pieces were left over.
-fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
+pub(super) fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
     let ends: Vec<Point> = pieces.iter().flat_map(|p| [p.start(), p.end()]).collect();
     let node = cluster_points(&ends, tol.crossing());
     let pieces: Vec<Piece> = pieces

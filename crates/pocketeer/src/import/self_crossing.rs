@@ -61,10 +61,32 @@ pub fn make_simple(contour: &Contour, tol: &Tolerance) -> Result<(Contour, Vec<P
 
 /// The first pair of segments `(i, j)`, i < j, that meet other than at a shared joint.
 fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Intersection)> {
+    let mut first = None;
+    visit_crossings(c, tol, |i, j, h| {
+        first = Some((i, j, h));
+        false
+    });
+    first
+}
+
+/// Every place where the contour meets itself other than at a shared joint: the segments
+/// `(i, j)`, i < j, and how they meet.
+pub(super) fn crossings(c: &Contour, tol: &Tolerance) -> Vec<(usize, usize, Intersection)> {
+    let mut all = Vec::new();
+    visit_crossings(c, tol, |i, j, h| {
+        all.push((i, j, h));
+        true
+    });
+    all
+}
+
+/// Calls `f` on each place where the contour meets itself other than at a shared joint,
+/// while it returns true.
+fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize, Intersection) -> bool) {
     let segs = &c.segments;
     let n = segs.len();
     if n < 2 {
-        return None;
+        return;
     }
     let boxes: Vec<Aabb> = segs.iter().map(|s| s.bbox().inflated(tol.eps)).collect();
     let index = BoxIndex::new(&boxes);
@@ -73,24 +95,25 @@ fn first_crossing(c: &Contour, tol: &Tolerance) -> Option<(usize, usize, Interse
     let joint_radius = tol.join.max(tol.crossing());
     for (i, j) in index.pairs() {
         for h in intersect(&segs[i], &segs[j], tol.eps).iter() {
-            let Intersection::Point { point, ta, tb } = h else {
+            let at_joint = match h {
                 // The contour runs back over itself.
-                return Some((i, j, h));
+                Intersection::Overlap { .. } => false,
+                Intersection::Point { point, ta, tb } => {
+                    // Where i ends at j's start, the stretches of each between the hit and that
+                    // joint; where j ends at i's start (the contour's closing joint), the same
+                    // the other way. (A contour of two elements has both.)
+                    let ends_at_j = (i + 1 == j).then(|| (segs[j].start(), (ta, 1.0), (0.0, tb)));
+                    let j_ends_at = ((j + 1) % n == i).then(|| (segs[i].start(), (0.0, ta), (tb, 1.0)));
+                    ends_at_j.into_iter().chain(j_ends_at).any(|(joint, a, b)| {
+                        joint.distance(point) <= joint_radius && !lobe_between(&segs[i], a, &segs[j], b, tol)
+                    })
+                }
             };
-            // Where i ends at j's start, the stretches of each between the hit and that joint;
-            // where j ends at i's start (the contour's closing joint), the same the other way.
-            // (A contour of two elements has both.)
-            let ends_at_j = (i + 1 == j).then(|| (segs[j].start(), (ta, 1.0), (0.0, tb)));
-            let j_ends_at = ((j + 1) % n == i).then(|| (segs[i].start(), (0.0, ta), (tb, 1.0)));
-            let at_joint = ends_at_j.into_iter().chain(j_ends_at).any(|(joint, a, b)| {
-                joint.distance(point) <= joint_radius && !lobe_between(&segs[i], a, &segs[j], b, tol)
-            });
-            if !at_joint {
-                return Some((i, j, h));
+            if !at_joint && !f(i, j, h) {
+                return;
             }
         }
     }
-    None
 }
 
 /// Whether neighbours `a` and `b`, meeting again at the far ends of their stretches `sa` and

@@ -2,7 +2,7 @@
 //! which a front end formats (their `Display` is a one-line message).
 
 use super::error::{fmt_count, fmt_number, EntityRef};
-use super::Units;
+use super::{FillRule, Units};
 use crate::geom::Point;
 use thiserror::Error;
 
@@ -107,6 +107,20 @@ pub enum ImportWarning {
         /// Where it crosses itself.
         at: Point,
     },
+    /// A contour crossing or touching itself was filled by a rule into simple loops.
+    #[error("the contour on layer '{layer}' crosses or touches itself {}: filled by the {} rule into {}",
+        fmt_places(.at), match .rule { FillRule::EvenOdd => "even-odd", FillRule::NonZero => "non-zero" },
+        fmt_count(*.loops, "loop", "loops"))]
+    SelfCrossingFilled {
+        /// The contour's layer.
+        layer: String,
+        /// The rule used.
+        rule: FillRule,
+        /// How many simple loops it became.
+        loops: usize,
+        /// Every place where it meets itself.
+        at: Vec<Point>,
+    },
     /// Two contours meet: overlapping ones at the same nesting depth are merged, a contour
     /// crossing the wall of the pocket around it cuts the wall back.
     #[error("contours on layers '{}' and '{}' meet at {at}; they {}", .layers[0], .layers[1],
@@ -132,4 +146,21 @@ pub enum ImportWarning {
         /// Its first point.
         at: Point,
     },
+}
+
+/// "at (x, y)", or "at N places: (x, y), (x, y), … and N more".
+fn fmt_places(at: &[Point]) -> String {
+    match at {
+        [] => "somewhere".to_owned(),
+        [p] => format!("at {p}"),
+        _ => {
+            let shown: Vec<String> = at.iter().take(3).map(ToString::to_string).collect();
+            let more = if at.len() > 3 {
+                format!(" and {} more", at.len() - 3)
+            } else {
+                String::new()
+            };
+            format!("at {} places: {}{more}", at.len(), shown.join(", "))
+        }
+    }
 }
