@@ -245,3 +245,66 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn strokes_that_bound_nothing_are_left_out_of_the_outline() {
+    // A construction line drawn from the wall into the pocket, and a leader from a hole to a
+    // corner: each makes three ends meet, and neither bounds anything.
+    let mut ents = rect_lines("0", 0.0, 0.0, 100.0, 60.0);
+    ents.push(line("0", 100.0, 30.0, 70.0, 30.0));
+    ents.push(circle("0", 30.0, 30.0, 5.0));
+    ents.push(line("0", 0.0, 60.0, 30.0, 35.0));
+    // The wall is drawn in pieces meeting where the strokes start, as CAD programs leave it.
+    ents.remove(1);
+    ents.push(line("0", 100.0, 0.0, 100.0, 30.0));
+    ents.push(line("0", 100.0, 30.0, 100.0, 60.0));
+    let a = read(&Drawing::new(ents));
+    let p = pockets(&a);
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(close(p[0].0, 6000.0 - 25.0 * std::f64::consts::PI, 1e-6), "{p:?}");
+    let removed = a
+        .chains
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, ImportWarning::StrokeRemoved { .. }))
+        .count();
+    assert_eq!(removed, 2, "{:?}", a.chains.warnings);
+    assert!(!a
+        .chains
+        .warnings
+        .iter()
+        .any(|w| matches!(w, ImportWarning::OddJunction { .. })));
+}
+
+#[test]
+fn a_part_drawn_with_its_internal_edges_is_the_faces_it_encloses() {
+    // A plate with a cut-out drawn as a rectangle divided in three: the faces merge into one
+    // island, as the even-odd rule reads the strokes.
+    let mut ents = rect_lines("0", 0.0, 0.0, 100.0, 60.0);
+    ents.extend([
+        line("0", 20.0, 20.0, 50.0, 20.0),
+        line("0", 50.0, 20.0, 80.0, 20.0),
+        line("0", 80.0, 20.0, 80.0, 40.0),
+        line("0", 80.0, 40.0, 50.0, 40.0),
+        line("0", 50.0, 40.0, 20.0, 40.0),
+        line("0", 20.0, 40.0, 20.0, 20.0),
+        line("0", 50.0, 20.0, 50.0, 40.0),
+    ]);
+    let a = read(&Drawing::new(ents));
+    let p = pockets(&a);
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert_eq!(p[0].2.len(), 1, "{p:?}");
+    assert!(close(p[0].2[0], 1200.0, 1e-6), "{p:?}");
+    let branching: Vec<_> = a
+        .chains
+        .warnings
+        .iter()
+        .filter_map(|w| match w {
+            ImportWarning::BranchingOutline { at, branches, faces } => Some((*at, *branches, *faces)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(branching.len(), 1, "{:?}", a.chains.warnings);
+    assert_eq!((branching[0].1, branching[0].2), (2, 2));
+    assert!([Point::new(50.0, 20.0), Point::new(50.0, 40.0)].contains(&branching[0].0));
+}

@@ -61,7 +61,6 @@ fn variants(vertices: &[(i16, i16, i8)]) -> Vec<(String, Vec<Vertex>)> {
     out
 }
 
-
 fn distance(input: u16) -> f64 {
     0.01 + input as f64 / 1000.0
 }

@@ -10,6 +10,8 @@
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
+use super::dangles::{remove_dangles, strokes, Stroke};
+use super::faces::{bounded_faces, Edge};
 use super::free_ends::{join_free_ends, UNAMBIGUOUS};
 use super::nodes::{node_distance, Nodes};
 use super::Element;
@@ -156,6 +158,14 @@ pub fn chain(elements: &[Element], tol: &Tolerance, close_gaps: f64) -> Chains {
         alive.push(true);
     }
     let elements = &all[..];
+    for d in remove_dangles(&mut alive, &nodes) {
+        out.warnings.push(ImportWarning::StrokeRemoved {
+            elements: d.elements,
+            from: d.from,
+            to: d.to,
+        });
+    }
+    take_faces(elements, drawn, &mut alive, &nodes, &mut out);
     let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
     let mut used = vec![false; elements.len()];
     for first in 0..elements.len() {
@@ -205,6 +215,67 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
             layer: elements[members[0]].layer,
             elements: members.clone(),
         });
+    }
+}
+
+/// Takes the parts of the drawing that branch (a node where an odd number of three or more
+/// ends meet, once the strokes that bound nothing are gone) out of the chaining: their strokes
+/// are the edges of a planar graph, and its bounded faces the contours ([`super::faces`]).
+fn take_faces(elements: &[Element], drawn: usize, alive: &mut [bool], nodes: &Nodes, out: &mut Chains) {
+    let (strokes, degree) = strokes(alive, nodes);
+    let branch = |n: usize| degree[n] >= 3 && degree[n] % 2 == 1;
+    if !strokes.iter().any(|s| s.ends.iter().any(|&n| branch(n))) {
+        return;
+    }
+    let mut parts = crate::union_find::UnionFind::new(nodes.pos.len());
+    for s in &strokes {
+        parts.union(s.ends[0], s.ends[1]);
+    }
+    let mut branched: HashMap<usize, Vec<usize>> = HashMap::new();
+    for n in (0..nodes.pos.len()).filter(|&n| branch(n)) {
+        branched.entry(parts.find(n)).or_default().push(n);
+    }
+    let mut roots: Vec<usize> = branched.keys().copied().collect();
+    roots.sort_unstable();
+    for root in roots {
+        let members: Vec<&Stroke> = strokes.iter().filter(|s| parts.find(s.ends[0]) == root).collect();
+        let edges: Vec<Edge> = members
+            .iter()
+            .map(|s| Edge {
+                segments: s
+                    .elements
+                    .iter()
+                    .map(|&(i, rev)| snapped(&elements[i].segment, rev, i, nodes))
+                    .collect(),
+                ends: s.ends,
+            })
+            .collect();
+        let faces = bounded_faces(&edges);
+        let layer = elements[members[0].elements[0].0].layer;
+        out.warnings.push(ImportWarning::BranchingOutline {
+            at: nodes.pos[branched[&root][0]],
+            branches: branched[&root].len(),
+            faces: faces.len(),
+        });
+        for (contour, along) in faces {
+            let mut used: Vec<usize> = along
+                .iter()
+                .flat_map(|&k| members[k].elements.iter().map(|e| e.0))
+                .filter(|&i| i < drawn)
+                .collect();
+            used.sort_unstable();
+            used.dedup();
+            out.contours.push(ChainedContour {
+                contour,
+                layer,
+                elements: used,
+            });
+        }
+        for s in &members {
+            for &(i, _) in &s.elements {
+                alive[i] = false;
+            }
+        }
     }
 }
 

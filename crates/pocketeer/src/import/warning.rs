@@ -82,6 +82,32 @@ pub enum ImportWarning {
         /// The other end.
         to: Point,
     },
+    /// A stroke that bounds nothing, from a free end or an outline to where it meets an
+    /// outline (a construction line, a leader), was left out, so that the outline does not
+    /// branch there.
+    #[error("a stroke of {} from {from} to {to}, where it meets an outline, ignored: it bounds nothing",
+        fmt_count(*.elements, "element", "elements"))]
+    StrokeRemoved {
+        /// Its elements.
+        elements: usize,
+        /// Its other end: free, or on another outline.
+        from: Point,
+        /// Where it meets an outline.
+        to: Point,
+    },
+    /// Strokes branch (three, five, … ends meet at a point): the faces they enclose were taken
+    /// as contours.
+    #[error("the outline branches at {at}{}: the {} it encloses taken as contours",
+        if *.branches > 1 { format!(" and {} more places", .branches - 1) } else { String::new() },
+        fmt_count(*.faces, "face", "faces"))]
+    BranchingOutline {
+        /// The first place where it branches.
+        at: Point,
+        /// How many places it branches at.
+        branches: usize,
+        /// How many faces it encloses.
+        faces: usize,
+    },
     /// A closed polyline drawn there and back again: a line, no outline.
     #[error("a closed polyline of {} at {at} encloses no area; ignored",
         fmt_count(*.elements, "element", "elements"))]
