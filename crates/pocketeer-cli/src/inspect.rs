@@ -3,7 +3,7 @@
 
 use crate::display::count;
 use pocketeer::geom::Point;
-use pocketeer::import::NearestGap;
+use pocketeer::import::{ImportWarning, NearestGap};
 use pocketeer::Analysis;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -24,7 +24,17 @@ pub struct Report {
     contours: Vec<ContourRow>,
     open_chains: Vec<OpenRow>,
     pockets: Vec<PocketRow>,
+    /// What the importer changed from the drawing as drawn: empty for a clean drawing.
+    repairs: Vec<RepairRow>,
     warnings: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct RepairRow {
+    kind: &'static str,
+    /// The places, mm.
+    at: Vec<Point>,
+    message: String,
 }
 
 #[derive(Serialize)]
@@ -97,22 +107,6 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
     let layer_name = |i: usize| d.layers.get(i).cloned().unwrap_or_default();
     let mut warnings: Vec<String> = d.warnings.iter().map(ToString::to_string).collect();
     let ch = &a.chains;
-    if ch.duplicates_dropped > 0 {
-        warnings.push(format!(
-            "{} dropped: drawn twice, cut once",
-            count(ch.duplicates_dropped, "duplicate element", "duplicate elements")
-        ));
-    }
-    if ch.zero_length_dropped > 0 {
-        warnings.push(format!(
-            "{} dropped",
-            count(
-                ch.zero_length_dropped,
-                "zero-length element",
-                "zero-length elements"
-            )
-        ));
-    }
     warnings.extend(ch.warnings.iter().map(ToString::to_string));
     for o in &ch.open {
         let hint = match o.nearest_gap {
@@ -135,6 +129,16 @@ pub fn import_warnings(a: &Analysis) -> Vec<String> {
     }
     warnings.extend(a.nesting.warnings.iter().map(ToString::to_string));
     warnings
+}
+
+/// The importer's repairs: its remarks that change the outlines from the drawing as drawn.
+pub fn repairs(a: &Analysis) -> Vec<&ImportWarning> {
+    a.chains
+        .warnings
+        .iter()
+        .chain(&a.nesting.warnings)
+        .filter(|w| w.is_repair())
+        .collect()
 }
 
 /// Rounds to three decimals, as the report shows areas.
@@ -201,6 +205,14 @@ impl Report {
                     .collect(),
             })
             .collect();
+        let repairs = repairs(a)
+            .into_iter()
+            .map(|w| RepairRow {
+                kind: w.kind(),
+                at: w.places(),
+                message: w.to_string(),
+            })
+            .collect();
         let mut warnings = import_warnings(a);
         warnings.extend(crate::sanity::size_warnings(a));
         Report {
@@ -228,6 +240,7 @@ impl Report {
             contours,
             open_chains,
             pockets,
+            repairs,
             warnings,
         }
     }

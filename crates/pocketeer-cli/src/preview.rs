@@ -1,8 +1,8 @@
-//! The SVG previews every command writes: the drawing (its pockets, and the open chains
-//! ignored under `--ignore-open`) beneath the command's own layers.
+//! The SVG previews every command writes: the drawing (its pockets, the open chains ignored,
+//! and a ring round every place the importer repaired) beneath the command's own layers.
 
 use pocketeer::export::svg;
-use pocketeer::geom::{Contour, Segment};
+use pocketeer::geom::{Arc, Contour, Segment};
 use pocketeer::Analysis;
 
 /// An SVG document of the drawing of `a` with `layers` drawn over it.
@@ -14,6 +14,7 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
         .flat_map(|p| p.contours().cloned())
         .collect();
     let ignored = ignored_open_chains(a);
+    let repaired = repair_marks(a);
     let mut all = vec![
         svg::Layer {
             name: "drawing",
@@ -29,6 +30,13 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
             contours: &[],
             paths: &ignored,
         },
+        svg::Layer {
+            name: "repairs",
+            stroke: "#d0008a",
+            fill: "none",
+            contours: &repaired,
+            paths: &[],
+        },
     ];
     all.extend_from_slice(layers);
     svg::svg_document(&all)
@@ -41,5 +49,17 @@ fn ignored_open_chains(a: &Analysis) -> Vec<Vec<Segment>> {
         .iter()
         .flat_map(|o| o.elements.iter().filter_map(|&e| a.drawing.elements.get(e)))
         .map(|e| vec![e.segment])
+        .collect()
+}
+
+/// A ring round every place the importer repaired, a hundredth of the drawing across (a
+/// gap of micrometres would not show otherwise).
+fn repair_marks(a: &Analysis) -> Vec<Contour> {
+    let e = &a.drawing.extent;
+    let r = (0.005 * e.width().max(e.height())).max(1e-3);
+    crate::inspect::repairs(a)
+        .iter()
+        .flat_map(|w| w.places())
+        .map(|p| Contour::new(vec![Segment::Arc(Arc::new(p, r, 0.0, std::f64::consts::TAU))]))
         .collect()
 }

@@ -27,6 +27,44 @@ fn inspect_json_has_the_same_figures() {
 }
 
 #[test]
+fn inspect_json_lists_the_repairs_and_the_preview_marks_them() {
+    // The bracket is clean.
+    let out = run(&["inspect", "--json", "examples/bracket.dxf"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["repairs"].as_array().unwrap().len(), 0, "{}", v["repairs"]);
+    // A wall missing its start by 0.02 mm round a hole: the gap is bridged, and said where.
+    let dir = tempfile::tempdir().unwrap();
+    let drawing = dir.path().join("gap.dxf");
+    let wall: &[(f64, f64)] = &[(0.0, 0.02), (0.0, 40.0), (60.0, 40.0), (60.0, 0.0), (0.0, 0.0)];
+    std::fs::write(&drawing, dxf(&[(wall, false)], &[(30.0, 20.0, 6.0)], 4)).unwrap();
+    let out = run(&["inspect", "--json", drawing.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let repairs = v["repairs"].as_array().unwrap();
+    assert_eq!(repairs.len(), 1, "{repairs:?}");
+    assert_eq!(repairs[0]["kind"], "gap-bridged");
+    let at = repairs[0]["at"].as_array().unwrap();
+    assert_eq!(at.len(), 2);
+    assert!(at.iter().any(|p| p["y"].as_f64() == Some(0.02)), "{at:?}");
+    let svg = dir.path().join("gap.svg");
+    let res = run(&[
+        "offset",
+        drawing.to_str().unwrap(),
+        "--distance",
+        "1",
+        "-o",
+        dir.path().join("gap-loops.dxf").to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(res.status.success());
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let marks = text.split(r#"<g id="repairs""#).nth(1).expect("a repairs layer");
+    let marks = &marks[..marks.find("</g>").unwrap()];
+    assert_eq!(marks.matches(" Z").count(), 2, "two rings: {marks}");
+}
+
+#[test]
 fn layer_filter_and_units_flags() {
     let out = run(&[
         "inspect",

@@ -128,6 +128,24 @@ pub fn chain(elements: &[Element], tol: &Tolerance, close_gaps: f64) -> Chains {
             out.zero_length_dropped += 1;
         }
     }
+    for (count, warning) in [
+        (
+            out.duplicates_dropped,
+            ImportWarning::DuplicatesDropped {
+                count: out.duplicates_dropped,
+            },
+        ),
+        (
+            out.zero_length_dropped,
+            ImportWarning::ZeroLengthDropped {
+                count: out.zero_length_dropped,
+            },
+        ),
+    ] {
+        if count > 0 {
+            out.warnings.push(warning);
+        }
+    }
     let bridges = join_free_ends(elements, &alive, &mut nodes, tol.join, close_gaps);
     out.gaps_closed = nodes.gaps_closed;
     out.largest_gap = nodes.largest_gap;

@@ -61,6 +61,18 @@ pub enum ImportWarning {
         /// Its x and y scale.
         scale: (f64, f64),
     },
+    /// Elements drawn twice (or lying on another) were dropped.
+    #[error("{} dropped: drawn twice, cut once", fmt_count(*.count, "duplicate element", "duplicate elements"))]
+    DuplicatesDropped {
+        /// How many.
+        count: usize,
+    },
+    /// Elements with no length were dropped.
+    #[error("{} dropped", fmt_count(*.count, "zero-length element", "zero-length elements"))]
+    ZeroLengthDropped {
+        /// How many.
+        count: usize,
+    },
     /// End points that did not coincide exactly were moved to meet.
     #[error("{} between end points closed, the largest {largest:.6} mm at {at}",
         fmt_count(*.count, "gap", "gaps"))]
@@ -172,6 +184,75 @@ pub enum ImportWarning {
         /// Its first point.
         at: Point,
     },
+}
+
+impl ImportWarning {
+    /// A short name of the kind of remark, for scripts: `gap-bridged`, `self-crossing-filled`, …
+    ///
+    /// ```
+    /// use pocketeer::geom::Point;
+    /// use pocketeer::import::ImportWarning;
+    /// let w = ImportWarning::GapBridged { length: 0.02, from: Point::new(0.0, 0.0), to: Point::new(0.0, 0.02) };
+    /// assert_eq!(w.kind(), "gap-bridged");
+    /// assert!(w.is_repair());
+    /// assert_eq!(w.places().len(), 2);
+    /// ```
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ImportWarning::SectionNotEnded { .. } => "section-not-ended",
+            ImportWarning::NoEofMarker => "no-eof-marker",
+            ImportWarning::UnitsOverridden { .. } => "units-overridden",
+            ImportWarning::LayerNotInDrawing { .. } => "layer-not-in-drawing",
+            ImportWarning::UndefinedBlock { .. } => "undefined-block",
+            ImportWarning::BlockScaledToNothing { .. } => "block-scaled-to-nothing",
+            ImportWarning::DuplicatesDropped { .. } => "duplicates-dropped",
+            ImportWarning::ZeroLengthDropped { .. } => "zero-length-dropped",
+            ImportWarning::GapsClosed { .. } => "gaps-closed",
+            ImportWarning::GapBridged { .. } => "gap-bridged",
+            ImportWarning::StrokeRemoved { .. } => "stroke-removed",
+            ImportWarning::BranchingOutline { .. } => "branching-outline",
+            ImportWarning::NoArea { .. } => "no-area",
+            ImportWarning::OddJunction { .. } => "odd-junction",
+            ImportWarning::SliverLoopRemoved { .. } => "sliver-loop-removed",
+            ImportWarning::SelfCrossingFilled { .. } => "self-crossing-filled",
+            ImportWarning::ContoursMeet { .. } => "contours-meet",
+            ImportWarning::PiecesLost { .. } => "pieces-lost",
+            ImportWarning::IslandInNoPocket { .. } => "island-in-no-pocket",
+        }
+    }
+
+    /// True when the remark is a repair: the outlines pocketed differ from the elements as
+    /// drawn (ends moved or joined, elements dropped or added, crossings filled, contours
+    /// merged). A drawing imported without a repair is pocketed exactly as drawn.
+    pub fn is_repair(&self) -> bool {
+        !matches!(
+            self,
+            ImportWarning::SectionNotEnded { .. }
+                | ImportWarning::NoEofMarker
+                | ImportWarning::UnitsOverridden { .. }
+                | ImportWarning::LayerNotInDrawing { .. }
+                | ImportWarning::UndefinedBlock { .. }
+                | ImportWarning::BlockScaledToNothing { .. }
+        )
+    }
+
+    /// The places the remark is about, in mm (none for a remark about the whole file).
+    pub fn places(&self) -> Vec<Point> {
+        match self {
+            ImportWarning::GapsClosed { at, .. }
+            | ImportWarning::BranchingOutline { at, .. }
+            | ImportWarning::NoArea { at, .. }
+            | ImportWarning::OddJunction { at, .. }
+            | ImportWarning::SliverLoopRemoved { at, .. }
+            | ImportWarning::ContoursMeet { at, .. }
+            | ImportWarning::IslandInNoPocket { at } => vec![*at],
+            ImportWarning::GapBridged { from, to, .. } | ImportWarning::StrokeRemoved { from, to, .. } => {
+                vec![*from, *to]
+            }
+            ImportWarning::SelfCrossingFilled { at, .. } => at.clone(),
+            _ => Vec::new(),
+        }
+    }
 }
 
 /// "at (x, y)", or "at N places: (x, y), (x, y), … and N more".
