@@ -78,3 +78,64 @@ fn every_fixture_imports_or_is_refused_with_a_message() {
         }
     }
 }
+
+#[test]
+fn the_ac1003_part_loses_its_leader_and_corner_marks_and_keeps_its_hole() {
+    // A part of lines and arcs with a hole of radius 0.3, a leader drawn from the hole to the
+    // corner (3.5, 1.5) and two corner marks there: the strokes bound nothing and are left
+    // out. The outline's area, 3.1427, was summed independently over its arcs sampled finely.
+    let a = analyze_file("corpus/mit/AC1003_LINE_Example.dxf").unwrap();
+    assert_eq!(a.nesting.pockets.len(), 1);
+    let p = &a.nesting.pockets[0];
+    assert!(
+        (p.boundary.signed_area() - 3.142699).abs() < 1e-5,
+        "{}",
+        p.boundary.signed_area()
+    );
+    assert_eq!(p.islands.len(), 1);
+    assert!((p.islands[0].signed_area() + 0.09 * std::f64::consts::PI).abs() < 1e-9);
+    let strokes: Vec<_> = a
+        .chains
+        .warnings
+        .iter()
+        .filter_map(|w| match w {
+            pocketeer::import::ImportWarning::StrokeRemoved { from, to, .. } => Some((*from, *to)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(strokes.len(), 3, "{:?}", a.chains.warnings);
+    let corner = pocketeer::geom::Point::new(3.5, 1.5);
+    assert!(strokes.iter().any(|s| s.1.distance(corner) < 1e-9), "{strokes:?}");
+}
+
+#[test]
+fn the_keyboard_case_is_read_with_its_gaps_bridged_and_its_crossing_filled() {
+    // Refused before the importer repaired: an outline open by 0.0155 mm whose ends overlap,
+    // so that once bridged it touches itself.
+    let a = analyze_file("corpus/mit/crkbd.dxf").unwrap();
+    assert_eq!(a.nesting.pockets.len(), 13);
+    let kinds: Vec<&str> = a
+        .chains
+        .warnings
+        .iter()
+        .chain(&a.nesting.warnings)
+        .map(|w| w.kind())
+        .collect();
+    assert_eq!(
+        kinds.iter().filter(|k| **k == "gap-bridged").count(),
+        2,
+        "{kinds:?}"
+    );
+    assert_eq!(
+        kinds.iter().filter(|k| **k == "self-crossing-filled").count(),
+        1,
+        "{kinds:?}"
+    );
+    let strict = ImportOptions {
+        strict: true,
+        ..Default::default()
+    };
+    let bytes = std::fs::read(fixture("corpus/mit/crkbd.dxf")).unwrap();
+    let err = analyze(&bytes, &strict).unwrap_err();
+    assert!(err.to_string().contains("(26.8681, 40.8427)"), "{err}");
+}
