@@ -424,7 +424,11 @@ impl Curve {
                     for i in 0..pieces {
                         let a = e.t0 + e.sweep * i as f64 / pieces as f64;
                         let b = e.t0 + e.sweep * (i + 1) as f64 / pieces as f64;
-                        super::biarc::fit(&|t| (e.point(t), e.derivative(t)), a, b, tolerance, out);
+                        let curve = super::biarc::Curve {
+                            point: &|t| e.point(t),
+                            with_derivative: &|t| (e.point(t), e.derivative(t)),
+                        };
+                        super::biarc::fit(&curve, a, b, tolerance, out);
                     }
                 }
             },
@@ -448,7 +452,12 @@ impl Curve {
                         }
                         (p, d)
                     };
-                    super::biarc::fit(&eval, a, b, tolerance, out);
+                    let point = |t: f64| s.point_in_span(k, t);
+                    let curve = super::biarc::Curve {
+                        point: &point,
+                        with_derivative: &eval,
+                    };
+                    super::biarc::fit(&curve, a, b, tolerance, out);
                 }
             }
         }

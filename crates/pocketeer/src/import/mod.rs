@@ -226,23 +226,25 @@ fn elements_of(
             .as_ref()
             .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(layer)))
     };
+    let kept: Vec<(usize, expand::Placed)> = placed
+        .into_iter()
+        .filter(|p| keep(&p.layer))
+        .map(|p| {
+            let layer = layers
+                .iter()
+                .position(|l| l.eq_ignore_ascii_case(&p.layer))
+                .unwrap_or(0);
+            (layer, p)
+        })
+        .collect();
+    let pieces = curves_to_segments(&kept);
     let mut elements = Vec::new();
     let mut sources = Vec::new();
     let mut extent = Aabb::EMPTY;
-    let mut segs = Vec::new();
-    for p in placed {
-        if !keep(&p.layer) {
-            continue;
-        }
-        let layer = layers
-            .iter()
-            .position(|l| l.eq_ignore_ascii_case(&p.layer))
-            .unwrap_or(0);
-        segs.clear();
-        p.curve.to_segments(CURVE_TOLERANCE, &mut segs);
+    for ((layer, p), segs) in kept.into_iter().zip(pieces) {
         let source = sources.len();
         sources.push(p.entity);
-        for s in segs.drain(..) {
+        for s in segs {
             extent = extent.union(&s.bbox());
             elements.push(Element {
                 segment: s,
@@ -253,6 +255,37 @@ fn elements_of(
         }
     }
     (elements, sources, extent)
+}
+
+/// Each placed curve as lines and arcs, in order. Fitting arcs to splines and ellipses is
+/// most of the time a drawing of traced art takes to read, and each curve is fitted alone:
+/// they are shared out among the machine's cores when there are many.
+fn curves_to_segments(kept: &[(usize, expand::Placed)]) -> Vec<Vec<Segment>> {
+    let one = |(_, p): &(usize, expand::Placed)| {
+        let mut segs = Vec::new();
+        p.curve.to_segments(CURVE_TOLERANCE, &mut segs);
+        segs
+    };
+    let fitted = kept
+        .iter()
+        .filter(|(_, p)| !matches!(p.curve, curve::Curve::Line(..)))
+        .count();
+    let threads = std::thread::available_parallelism().map_or(1, usize::from).min(8);
+    if threads < 2 || fitted < 256 {
+        return kept.iter().map(one).collect();
+    }
+    let chunk = kept.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let workers: Vec<_> = kept
+            .chunks(chunk)
+            .map(|part| scope.spawn(move || part.iter().map(one).collect::<Vec<_>>()))
+            .collect();
+        workers
+            .into_iter()
+            // A worker only panics if the fitting does, which the serial path would too.
+            .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
 }
 
 /// Why a drawing whose model space has entities gives no element to pocket.
