@@ -333,3 +333,26 @@ fn closed_splines_sharing_a_stretch_stay_closed_and_merge() {
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(close(p[0].0, 200.0, 1e-6), "{p:?}");
 }
+
+/// A full ELLIPSE written to six digits (0 to 6.28318, short of 2π by 5e-6) is a whole
+/// contour, like a closed spline: no gap to close, and no duplicate removal cuts into it.
+#[test]
+fn a_full_ellipse_written_to_six_digits_is_a_closed_contour() {
+    let e = Entity::new("ELLIPSE", "0")
+        .g(10, 0.0)
+        .g(20, 0.0)
+        .g(11, 8.77715)
+        .g(21, 7.66376)
+        .g(40, 0.286616)
+        .g(41, 0.0)
+        // 2π to six digits, as the writer put it (not the constant: that is the point).
+        .g(42, (2.0 * PI * 1e5).floor() / 1e5);
+    let a = read(&Drawing::new(vec![e]));
+    assert!(a.drawing.elements.iter().all(|e| e.closed_group.is_some()));
+    assert_eq!(a.chains.contours.len(), 1);
+    assert!(a.chains.warnings.is_empty(), "{:?}", a.chains.warnings);
+    let major = 8.77715f64.hypot(7.66376);
+    let area = PI * major * major * 0.286616;
+    // Within the arcs' 1 µm of the ellipse along its 53 mm.
+    assert!(close(pockets(&a)[0].0, area, 0.06), "{:?} vs {area}", pockets(&a));
+}

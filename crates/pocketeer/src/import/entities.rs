@@ -70,7 +70,14 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
     match e.kind.as_str() {
         "LINE" => open(line(&f)?),
         "CIRCLE" | "ARC" => open(circle_or_arc(e, &f)?),
-        "ELLIPSE" => open(ellipse(&f)?),
+        "ELLIPSE" => {
+            let curves = ellipse(&f)?;
+            // A full ellipse is a contour by itself, as a closed spline is.
+            let closed = curves
+                .iter()
+                .all(|c| matches!(c, Curve::Ellipse(e) if e.sweep.abs() == TAU));
+            Ok(Drawn::Curves { curves, closed })
+        }
         "LWPOLYLINE" => Ok(lwpolyline(e, &f)),
         "POLYLINE" => old_polyline(e, &f),
         "SPLINE" => {
@@ -126,6 +133,9 @@ fn circle_or_arc(e: &RawEntity, f: &Fields) -> Result<Vec<Curve>, String> {
     })
 }
 
+/// An ELLIPSE whose parameters span a full turn less than this many radians is a full ellipse.
+const FULL_TURN_SLACK: f64 = 1e-5;
+
 fn ellipse(f: &Fields) -> Result<Vec<Curve>, String> {
     let c = f.point(10).ok_or("no centre")?;
     let major = Vector::new(f.real_or(11, 0.0), f.real_or(21, 0.0));
@@ -140,7 +150,9 @@ fn ellipse(f: &Fields) -> Result<Vec<Curve>, String> {
     let t0 = f.real_or(41, 0.0);
     let t1 = f.real_or(42, TAU);
     let mut sweep = (t1 - t0).rem_euclid(TAU);
-    if sweep == 0.0 {
+    // 0 to 2π, or 0 to 6.28318 as a writer of six digits puts it (an arc short of a full turn
+    // by 1e-5 radians is no arc anyone draws): a whole ellipse.
+    if sweep == 0.0 || TAU - sweep < FULL_TURN_SLACK {
         sweep = TAU;
     }
     Ok(vec![Curve::Ellipse(EllipseArc {
