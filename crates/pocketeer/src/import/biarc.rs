@@ -89,9 +89,12 @@ fn fit_rec(curve: &Curve, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<
 /// golden-section search between the neighbouring samples, to a ten-thousandth of their
 /// spacing (the distance is flat at its minimum: its error is the square of that, relative).
 fn distance_to_curve(point: &dyn Fn(f64) -> Point, samples: &[(f64, Point)], q: Point) -> f64 {
-    let Some(i) =
-        (0..samples.len()).min_by(|&a, &b| samples[a].1.distance(q).total_cmp(&samples[b].1.distance(q)))
-    else {
+    let Some(i) = (0..samples.len()).min_by(|&a, &b| {
+        samples[a]
+            .1
+            .distance_sq(q)
+            .total_cmp(&samples[b].1.distance_sq(q))
+    }) else {
         return f64::INFINITY;
     };
     let (mut lo, mut hi) = (

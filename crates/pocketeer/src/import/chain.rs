@@ -4,9 +4,9 @@
 //! [`Chains`]: closed contours, open chains with their free ends, counts of what was dropped
 //! and joined, and [`ImportWarning`]s.
 //!
-//! End points within the coincidence distance are one node ([`super::nodes`]); free ends are
+//! End points within the coincidence distance are one node (`nodes.rs`); free ends are
 //! then joined in pairs, snapped within the join tolerance or bridged by a straight segment
-//! ([`super::free_ends`]). Duplicates (the same element drawn twice, or one lying on another)
+//! (`free_ends.rs`). Duplicates (the same element drawn twice, or one lying on another)
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
@@ -84,7 +84,7 @@ pub(super) type End = (usize, u8);
 /// Joins `elements` into closed contours, per layer: ends within the coincidence distance are
 /// one node, free ends within the join tolerance `tol.join` are snapped together, and free
 /// ends up to `close_gaps` apart that are unambiguously each other's (see
-/// [`super::free_ends`]) are bridged by a straight segment, reported as
+/// `free_ends.rs`) are bridged by a straight segment, reported as
 /// [`ImportWarning::GapBridged`]. `close_gaps` 0 bridges nothing.
 ///
 /// ```
