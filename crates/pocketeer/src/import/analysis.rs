@@ -21,7 +21,7 @@ pub struct Analysis {
 
 /// An open chain whose own gap is at most this share of its length is an outline that does
 /// not close; a chain open wider is a stroke (a centre mark, a construction line, a letter).
-pub const BROKEN_OUTLINE_GAP: f64 = 0.1;
+const BROKEN_OUTLINE_GAP: f64 = 0.1;
 
 /// Reads DXF bytes and finds the pockets in them.
 ///
@@ -60,7 +60,7 @@ pub fn analyze(bytes: &[u8], options: &ImportOptions) -> Result<Analysis, Import
 /// [`BROKEN_OUTLINE_GAP`] of its length and the loop enclosing more than half the gap times
 /// the length (a stroke drawn there and back, a sliver across its gap, encloses at most a
 /// quarter of that).
-pub fn closed_across_gap(o: &OpenChain) -> Option<Contour> {
+fn closed_across_gap(o: &OpenChain) -> Option<Contour> {
     let length: f64 = o.segments.iter().map(Segment::length).sum();
     let gap = o.start.distance(o.end);
     if gap > BROKEN_OUTLINE_GAP * length {

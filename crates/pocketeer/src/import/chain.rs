@@ -10,7 +10,7 @@
 //! and zero-length elements are dropped first. Chains whose ends meet nothing are reported with
 //! their free end coordinates.
 
-use super::dangles::{remove_dangles, strokes, Stroke};
+use super::dangles::{remove_dangles, Stroke, Strokes};
 use super::faces::{bounded_faces, Edge};
 use super::free_ends::{join_free_ends, UNAMBIGUOUS};
 use super::nodes::{node_distance, Nodes};
@@ -176,14 +176,15 @@ pub fn chain(elements: &[Element], tol: &Tolerance, close_gaps: f64) -> Chains {
         alive.push(true);
     }
     let elements = &all[..];
-    for d in remove_dangles(&mut alive, &nodes) {
+    let (dangles, left) = remove_dangles(&mut alive, &nodes);
+    for d in dangles {
         out.warnings.push(ImportWarning::StrokeRemoved {
             elements: d.elements,
             from: d.from,
             to: d.to,
         });
     }
-    take_faces(elements, drawn, &mut alive, &nodes, &mut out);
+    take_faces(elements, drawn, &mut alive, &nodes, &left, &mut out);
     let partner = pair_ends(elements, &alive, &nodes, &mut out.warnings);
     let mut used = vec![false; elements.len()];
     for first in 0..elements.len() {
@@ -238,25 +239,39 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
 
 /// Takes the parts of the drawing that branch (a node where an odd number of three or more
 /// ends meet, once the strokes that bound nothing are gone) out of the chaining: their strokes
-/// are the edges of a planar graph, and its bounded faces the contours ([`super::faces`]).
-fn take_faces(elements: &[Element], drawn: usize, alive: &mut [bool], nodes: &Nodes, out: &mut Chains) {
-    let (strokes, degree) = strokes(alive, nodes);
+/// are the edges of a planar graph, and its bounded faces the contours (`faces.rs`).
+fn take_faces(
+    elements: &[Element],
+    drawn: usize,
+    alive: &mut [bool],
+    nodes: &Nodes,
+    left: &Strokes,
+    out: &mut Chains,
+) {
+    let (strokes, degree) = (&left.strokes, &left.degree);
     let branch = |n: usize| degree[n] >= 3 && degree[n] % 2 == 1;
     if !strokes.iter().any(|s| s.ends.iter().any(|&n| branch(n))) {
         return;
     }
     let mut parts = crate::union_find::UnionFind::new(nodes.pos.len());
-    for s in &strokes {
+    for s in strokes {
         parts.union(s.ends[0], s.ends[1]);
     }
     let mut branched: HashMap<usize, Vec<usize>> = HashMap::new();
     for n in (0..nodes.pos.len()).filter(|&n| branch(n)) {
         branched.entry(parts.find(n)).or_default().push(n);
     }
+    let mut strokes_of: HashMap<usize, Vec<&Stroke>> = HashMap::new();
+    for s in strokes {
+        let root = parts.find(s.ends[0]);
+        if branched.contains_key(&root) {
+            strokes_of.entry(root).or_default().push(s);
+        }
+    }
     let mut roots: Vec<usize> = branched.keys().copied().collect();
     roots.sort_unstable();
     for root in roots {
-        let members: Vec<&Stroke> = strokes.iter().filter(|s| parts.find(s.ends[0]) == root).collect();
+        let members = &strokes_of[&root];
         let edges: Vec<Edge> = members
             .iter()
             .map(|s| Edge {
@@ -289,7 +304,7 @@ fn take_faces(elements: &[Element], drawn: usize, alive: &mut [bool], nodes: &No
                 elements: used,
             });
         }
-        for s in &members {
+        for s in members {
             for &(i, _) in &s.elements {
                 alive[i] = false;
             }

@@ -26,9 +26,15 @@ pub(super) struct Stroke {
     pub(super) ends: [usize; 2],
 }
 
+/// The chains of live elements between junctions, and every node's degree.
+pub(super) struct Strokes {
+    pub(super) strokes: Vec<Stroke>,
+    pub(super) degree: Vec<usize>,
+}
+
 /// Marks dead every live element on a bridge chain that touches a branch, repeating while
-/// taking some out makes others bridges; returns the strokes taken out.
-pub(super) fn remove_dangles(alive: &mut [bool], nodes: &Nodes) -> Vec<Dangle> {
+/// taking some out makes others bridges; returns the strokes taken out, and the strokes left.
+pub(super) fn remove_dangles(alive: &mut [bool], nodes: &Nodes) -> (Vec<Dangle>, Strokes) {
     let mut dangles = Vec::new();
     loop {
         let (strokes, degree) = strokes(alive, nodes);
@@ -50,14 +56,14 @@ pub(super) fn remove_dangles(alive: &mut [bool], nodes: &Nodes) -> Vec<Dangle> {
             }
         }
         if !removed {
-            return dangles;
+            return (dangles, Strokes { strokes, degree });
         }
     }
 }
 
 /// The chains of live elements between junctions, and every node's degree. Loops through
 /// two-ended nodes only are no strokes and are left out.
-pub(super) fn strokes(alive: &[bool], nodes: &Nodes) -> (Vec<Stroke>, Vec<usize>) {
+fn strokes(alive: &[bool], nodes: &Nodes) -> (Vec<Stroke>, Vec<usize>) {
     let mut at_node: Vec<Vec<End>> = vec![Vec::new(); nodes.pos.len()];
     for i in (0..alive.len()).filter(|&i| alive[i]) {
         for end in [0u8, 1] {

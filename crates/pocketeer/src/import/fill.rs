@@ -39,21 +39,21 @@ impl FillRule {
 /// The simple loops bounding what `contour` fills under `rule`, and the points where it meets
 /// itself. Loops no wider than rounding are left out.
 pub(super) fn fill(contour: &Contour, rule: FillRule, tol: &Tolerance) -> (Vec<Contour>, Vec<Point>) {
-    let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
+    let mut cuts: HashMap<usize, Vec<(f64, Point)>> = HashMap::new();
     let mut points = Vec::new();
     let segs = &contour.segments;
     for (i, j, h) in crossings(contour, tol) {
         match h {
             Intersection::Point { point, ta, tb } => {
-                cuts.entry((0, i)).or_default().push((ta, point));
-                cuts.entry((0, j)).or_default().push((tb, point));
+                cuts.entry(i).or_default().push((ta, point));
+                cuts.entry(j).or_default().push((tb, point));
                 points.push(point);
             }
             Intersection::Overlap { a, b } => {
                 for (t, u) in [(a.0, b.0), (a.1, b.1)] {
                     let p = segs[i].point_at(t);
-                    cuts.entry((0, i)).or_default().push((t, p));
-                    cuts.entry((0, j)).or_default().push((u, p));
+                    cuts.entry(i).or_default().push((t, p));
+                    cuts.entry(j).or_default().push((u, p));
                 }
                 points.push(segs[i].point_at(0.5 * (a.0 + a.1)));
             }
@@ -61,7 +61,8 @@ pub(super) fn fill(contour: &Contour, rule: FillRule, tol: &Tolerance) -> (Vec<C
     }
     let index = WindingIndex::new(segs);
     let filled = |p: Point| rule.fills(index.winding(segs, p));
-    let pieces = boundary_pieces(&[contour], &cuts, &filled, tol);
+    let at_segment = |_: usize, k: usize| cuts.get(&k).map_or(&[][..], Vec::as_slice);
+    let pieces = boundary_pieces(&[contour], &at_segment, &filled, tol);
     let (loops, _) = stitch(pieces, tol);
     let loops = loops
         .into_iter()

@@ -10,7 +10,8 @@
 //! and so on. Contours that cross or touch each other (overlapping islands, an island crossing the
 //! wall) are cut at their intersections, and only the pieces with removed material on exactly
 //! one side are kept and stitched into loops: overlapping islands merge, and an island crossing
-//! the wall cuts the wall back. A contour that crosses itself is refused.
+//! the wall cuts the wall back. A contour that crosses itself is first filled into simple loops
+//! by a [`FillRule`] (`fill.rs`), or refused.
 
 use super::chain::ChainedContour;
 use super::error::ImportError;
@@ -293,14 +294,7 @@ impl Meetings {
                 continue;
             }
             let members: Vec<&Contour> = group.iter().map(|&c| &contours[c].contour).collect();
-            let cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = group
-                .iter()
-                .enumerate()
-                .flat_map(|(g, &c)| {
-                    (0..contours[c].contour.segments.len())
-                        .filter_map(move |k| self.cuts.get(&(c, k)).map(|v| ((g, k), v.clone())))
-                })
-                .collect();
+            let cuts = |g: usize, k: usize| self.cuts.get(&(group[g], k)).map_or(&[][..], Vec::as_slice);
             let pieces = boundary_pieces(&members, &cuts, removed, tol);
             let (stitched, lost) = stitch(pieces, tol);
             if lost > 0 {
@@ -404,19 +398,18 @@ fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Toleran
     inside > 0 && inside >= outside
 }
 
-/// Pieces of a group of crossing contours, cut where `cuts` says (by contour in `group` and
-/// segment), that have removed material on exactly one side, oriented with that material on
-/// their left.
-pub(super) fn boundary_pieces(
+/// Pieces of a group of crossing contours, cut where `cuts(contour in group, segment)` says,
+/// that have removed material on exactly one side, oriented with that material on their left.
+pub(super) fn boundary_pieces<'c>(
     group: &[&Contour],
-    cuts: &HashMap<(usize, usize), Vec<(f64, Point)>>,
+    cuts: &dyn Fn(usize, usize) -> &'c [(f64, Point)],
     removed: &dyn Fn(Point) -> bool,
     tol: &Tolerance,
 ) -> Vec<Segment> {
     let mut pieces: Vec<Segment> = Vec::new();
     for (c, contour) in group.iter().enumerate() {
         for (k, s) in contour.segments.iter().enumerate() {
-            let mut at: Vec<(f64, Point)> = cuts.get(&(c, k)).cloned().unwrap_or_default();
+            let mut at: Vec<(f64, Point)> = cuts(c, k).to_vec();
             at.push((0.0, s.start()));
             at.push((1.0, s.end()));
             at.sort_by(|a, b| a.0.total_cmp(&b.0));
