@@ -66,6 +66,7 @@ pub mod import;
 pub mod job;
 pub mod link;
 pub mod offset;
+mod parallel;
 pub mod post;
 pub mod simulate;
 pub mod toolpath;

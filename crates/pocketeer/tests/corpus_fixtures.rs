@@ -30,6 +30,27 @@ fn rotated_inserts_make_one_contour_of_2000() {
 }
 
 #[test]
+fn the_body_touching_the_plate_edges_is_an_island_of_the_plate() {
+    // OpenSCAD's example 9: a 40 mm plate and a body of eight arcs whose radius-20 arcs touch
+    // the plate's edges at their midpoints, so the body's extent equals the plate's up to
+    // rounding. The body is an island of the plate (it was dropped as "in no pocket", and
+    // the plate cut through it). Its area, 1436.39822 mm², is Green's theorem summed over
+    // the eight arcs as the file gives them.
+    let a = analyze_file("corpus/cc0/example009.dxf").unwrap();
+    let plate = &a.nesting.pockets[0];
+    assert!((plate.boundary.signed_area() - 1600.0).abs() < 1e-9);
+    assert_eq!(plate.islands.len(), 1);
+    assert!((plate.islands[0].signed_area() + 1436.39822).abs() < 1e-5);
+    assert!((plate.area() - 163.60178).abs() < 1e-5);
+    let dropped = a
+        .nesting
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, pocketeer::import::ImportWarning::IslandInNoPocket { .. }));
+    assert_eq!(dropped.count(), 0);
+}
+
+#[test]
 fn binary_dxf_r12_and_r2000_are_read() {
     for f in ["corpus/mit/bin_dxf_r12.dxf", "corpus/mit/bin_dxf_r2000.dxf"] {
         let bytes = std::fs::read(fixture(f)).unwrap();

@@ -73,7 +73,7 @@ pub(crate) fn arc_point_distance_with_ends(a: &Arc, start: Point, end: Point, p:
 /// True when the direction `v` from an arc's centre lies within its sweep, the arc running
 /// from direction `s` to direction `e` (counter-clockwise when `sweep` > 0): sign tests instead
 /// of an angle. The centre itself (`v` zero) counts as within.
-fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
+pub(crate) fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
     if sweep.abs() >= TAU {
         return true;
     }

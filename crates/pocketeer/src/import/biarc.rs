@@ -1,7 +1,8 @@
 //! Approximation of smooth curves (ellipses, splines) by biarcs: pairs of tangent-continuous
 //! circular arcs, subdivided until every sampled curve point is within the tolerance.
 
-use crate::geom::{distance_from_segment, Arc, Line, Point, Segment, Vector};
+use crate::geom::distance::{in_sweep, line_point_distance};
+use crate::geom::{Arc, Line, Point, Segment, Vector};
 
 /// Number of curve samples checked against each biarc.
 const SAMPLES: usize = 24;
@@ -12,119 +13,210 @@ const MARGIN: f64 = 0.8;
 const ARC_PROBES: usize = 6;
 /// Subdivision depth limit: 2^24 pieces is far beyond any drawing.
 const MAX_DEPTH: u32 = 24;
+/// Newton steps at most when projecting a point on the curve: it converges in three or four.
+const NEWTON_STEPS: usize = 12;
 
-/// A curve to fit: its point at a parameter, and its point with its derivative (dearer: only
-/// the ends of each piece need it).
-pub struct Curve<'a> {
+/// A smooth curve to fit, by its point and its first two derivatives at a parameter.
+pub trait SmoothCurve {
     /// The point at `t`.
-    pub point: &'a dyn Fn(f64) -> Point,
-    /// The point and the derivative at `t`.
-    pub with_derivative: &'a dyn Fn(f64) -> (Point, Vector),
+    fn point(&self, t: f64) -> Point;
+    /// The point at `t` and the first and second derivatives with respect to `t` there.
+    fn derivatives(&self, t: f64) -> (Point, Vector, Vector);
 }
 
 /// Appends to `out` lines and arcs that follow `curve` from `t0` to `t1` within `tolerance`.
-pub fn fit(curve: &Curve, t0: f64, t1: f64, tolerance: f64, out: &mut Vec<Segment>) {
+pub fn fit(curve: &impl SmoothCurve, t0: f64, t1: f64, tolerance: f64, out: &mut Vec<Segment>) {
     fit_rec(curve, t0, t1, tolerance, 0, out);
 }
 
-fn fit_rec(curve: &Curve, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<Segment>) {
-    let (p0, d0) = (curve.with_derivative)(t0);
-    let (p1, d1) = (curve.with_derivative)(t1);
+fn fit_rec(curve: &impl SmoothCurve, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<Segment>) {
+    let (p0, d0, _) = curve.derivatives(t0);
+    let (p1, d1, _) = curve.derivatives(t1);
     if p0.distance(p1) <= tol * 1e-6 {
         return; // a negligible piece: the chain closes the gap within the join tolerance
     }
     // Going from t0 to t1 the curve heads along its derivative, or against it where t1 < t0
     // (a clockwise elliptical arc): with the tangents reversed no biarc fits, and every piece
     // was halved down to MAX_DEPTH, 16 million lines for one arc.
-    let ahead = if t1 >= t0 { 1.0 } else { -1.0 };
-    let candidate = match ((d0 * ahead).normalized(), (d1 * ahead).normalized()) {
+    let candidate = match (
+        heading(curve, t0, t1, p0, d0),
+        heading(curve, t1, t0, p1, d1).map(|v| -v),
+    ) {
         (Some(a), Some(b)) => biarc(p0, a, p1, b),
         _ => None,
     };
     let target = tol * MARGIN;
-    // Largest distance between the curve and the arcs, both ways: every curve sample near an arc,
-    // and every arc near the curve (an arc may swing out and back between samples near it). The
-    // cheaper way first: most failed fits fail there.
-    let deviation = |segs: &[Segment]| {
-        let samples: Vec<(f64, Point)> = (0..=SAMPLES)
-            .map(|i| t0 + (t1 - t0) * i as f64 / SAMPLES as f64)
-            .map(|t| (t, (curve.point)(t)))
-            .collect();
-        let curve_to_arcs = samples
-            .iter()
-            .map(|&(_, p)| {
-                segs.iter()
-                    .map(|s| distance_from_segment(s, p))
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .fold(0.0, f64::max);
-        if curve_to_arcs > target {
-            return curve_to_arcs;
-        }
-        let arcs_to_curve = segs
-            .iter()
-            .flat_map(|s| (1..ARC_PROBES).map(move |k| s.point_at(k as f64 / ARC_PROBES as f64)))
-            .map(|q| distance_to_curve(curve.point, &samples, q))
-            .fold(0.0, f64::max);
-        curve_to_arcs.max(arcs_to_curve)
-    };
-    let error = candidate.as_ref().map_or(f64::INFINITY, |segs| deviation(segs));
+    let fits = candidate
+        .as_ref()
+        .is_some_and(|pieces| follows(curve, t0, t1, pieces, target));
     match candidate {
-        Some(segs) if depth >= MAX_DEPTH || error <= target => out.extend(segs),
+        Some(pieces) if depth >= MAX_DEPTH || fits => out.extend(pieces.iter().flatten().map(|p| p.segment)),
         None if depth >= MAX_DEPTH => out.push(Segment::Line(Line::new(p0, p1))),
         _ => {
             // Halving: where the first try failed, the error is rarely spread evenly enough for
             // a finer even split to pay off (measured on ellipses and splines).
-            let pieces = 2;
-            for i in 0..pieces {
-                let a = t0 + (t1 - t0) * i as f64 / pieces as f64;
-                let b = t0 + (t1 - t0) * (i + 1) as f64 / pieces as f64;
-                fit_rec(curve, a, b, tol, depth + 1, out);
+            let mid = 0.5 * (t0 + t1);
+            fit_rec(curve, t0, mid, tol, depth + 1, out);
+            fit_rec(curve, mid, t1, tol, depth + 1, out);
+        }
+    }
+}
+
+/// The unit direction in which the curve leaves `t` towards `toward`: its derivative, or where
+/// that vanishes (control points repeated at a spline's end), the chord to a point a little way
+/// on, widened until the curve visibly moves.
+fn heading(curve: &impl SmoothCurve, t: f64, toward: f64, p: Point, d: Vector) -> Option<Vector> {
+    let span = toward - t;
+    let scale = 1.0 + p.to_vector().length();
+    if d.length() * span.abs() > 1e-10 * scale {
+        return (d * span.signum()).normalized();
+    }
+    [1e-7, 1e-5, 1e-3, 1e-2].into_iter().find_map(|rel| {
+        let q = curve.point(t + span * rel);
+        (q.distance(p) > 1e-12 * scale)
+            .then(|| (q - p).normalized())
+            .flatten()
+    })
+}
+
+/// One arc or line of a biarc with its end points, known without trigonometry.
+#[derive(Debug, Clone, Copy)]
+pub struct BiarcPiece {
+    /// The arc or line.
+    pub segment: Segment,
+    /// Its start.
+    pub start: Point,
+    /// Its end.
+    pub end: Point,
+}
+
+impl BiarcPiece {
+    /// True when `q` is within `limit` of the piece.
+    fn is_near(&self, q: Point, limit: f64) -> bool {
+        match &self.segment {
+            Segment::Line(l) => line_point_distance(l, q) <= limit,
+            Segment::Arc(a) => {
+                let v = q - a.center;
+                if in_sweep(a.sweep, self.start - a.center, self.end - a.center, v) {
+                    // | |v| − r | ≤ limit without the square root.
+                    let (lo, hi) = ((a.radius - limit).max(0.0), a.radius + limit);
+                    let vv = v.length_sq();
+                    vv <= hi * hi && vv >= lo * lo
+                } else {
+                    let ll = limit * limit;
+                    self.start.distance_sq(q) <= ll || self.end.distance_sq(q) <= ll
+                }
             }
         }
     }
+
+    /// The points dividing the piece into `ARC_PROBES` equal parts, ends excluded.
+    fn probes(&self) -> impl Iterator<Item = Point> + '_ {
+        let (center, step) = match &self.segment {
+            Segment::Arc(a) => (a.center, a.sweep / ARC_PROBES as f64),
+            Segment::Line(_) => (self.start, 0.0),
+        };
+        let (sin, cos) = step.sin_cos();
+        let mut radial = self.start - center;
+        (1..ARC_PROBES).map(move |k| match &self.segment {
+            Segment::Line(_) => self.start + (self.end - self.start) * (k as f64 / ARC_PROBES as f64),
+            Segment::Arc(_) => {
+                radial = Vector::new(cos * radial.x - sin * radial.y, sin * radial.x + cos * radial.y);
+                center + radial
+            }
+        })
+    }
 }
 
-/// Distance from `q` to the curve near the closest of its `samples` (parameter, point): a
-/// golden-section search between the neighbouring samples, to a ten-thousandth of their
-/// spacing (the distance is flat at its minimum: its error is the square of that, relative).
-fn distance_to_curve(point: &dyn Fn(f64) -> Point, samples: &[(f64, Point)], q: Point) -> f64 {
-    let Some(i) = (0..samples.len()).min_by(|&a, &b| {
-        samples[a]
-            .1
-            .distance_sq(q)
-            .total_cmp(&samples[b].1.distance_sq(q))
-    }) else {
-        return f64::INFINITY;
-    };
-    let (mut lo, mut hi) = (
+/// True when the curve from `t0` to `t1` and the biarc are within `limit` of each other, both
+/// ways: every curve sample near the biarc, and every probe of the biarc near the curve (an
+/// arc may swing out and back between samples near it). The cheaper way first: most failed
+/// fits fail there.
+fn follows(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Option<BiarcPiece>; 2], limit: f64) -> bool {
+    let pieces: Vec<&BiarcPiece> = pieces.iter().flatten().collect();
+    let mut samples = [(0.0, Point::ORIGIN); SAMPLES + 1];
+    for (i, s) in samples.iter_mut().enumerate() {
+        let t = t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
+        *s = (t, curve.point(t));
+    }
+    // The piece the previous sample was near is the likeliest for the next.
+    let mut near = 0;
+    for &(_, p) in &samples {
+        match (0..pieces.len())
+            .map(|k| (near + k) % pieces.len())
+            .find(|&k| pieces[k].is_near(p, limit))
+        {
+            Some(k) => near = k,
+            None => return false,
+        }
+    }
+    let mut nearest = 0;
+    pieces.iter().flat_map(|piece| piece.probes()).all(|q| {
+        nearest = nearest_sample(&samples, q, nearest);
+        is_near_curve(curve, &samples, nearest, q, limit)
+    })
+}
+
+/// The sample nearest to `q` walking from sample `from` while they come nearer: the probes
+/// follow the samples in order, so the walk is short. (A farther local minimum only makes the
+/// projection below start worse; the distance it finds is never understated.)
+fn nearest_sample(samples: &[(f64, Point)], q: Point, from: usize) -> usize {
+    let d = |i: usize| samples[i].1.distance_sq(q);
+    let mut i = from.min(samples.len() - 1);
+    while i + 1 < samples.len() && d(i + 1) <= d(i) {
+        i += 1;
+    }
+    while i > 0 && d(i - 1) < d(i) {
+        i -= 1;
+    }
+    i
+}
+
+/// True when `q` is within `limit` of the curve near sample `i` (parameter, point): Newton's
+/// method on the squared distance between the neighbouring samples, bisecting where a step
+/// would leave them, stopping at the first curve point within the limit.
+fn is_near_curve(curve: &impl SmoothCurve, samples: &[(f64, Point)], i: usize, q: Point, limit: f64) -> bool {
+    let ll = limit * limit;
+    if samples[i].1.distance_sq(q) <= ll {
+        return true;
+    }
+    let (ta, tb) = (
         samples[i.saturating_sub(1)].0,
         samples[(i + 1).min(samples.len() - 1)].0,
     );
-    let dist = |t: f64| point(t).distance(q);
-    const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let (mut a, mut b) = (hi - INV_PHI * (hi - lo), lo + INV_PHI * (hi - lo));
-    let (mut fa, mut fb) = (dist(a), dist(b));
-    for _ in 0..20 {
-        if fa < fb {
-            hi = b;
-            b = a;
-            fb = fa;
-            a = hi - INV_PHI * (hi - lo);
-            fa = dist(a);
-        } else {
-            lo = a;
-            a = b;
-            fa = fb;
-            b = lo + INV_PHI * (hi - lo);
-            fb = dist(b);
+    let (mut lo, mut hi) = (ta.min(tb), ta.max(tb));
+    let mut t = samples[i].0;
+    for _ in 0..NEWTON_STEPS {
+        let (p, d1, d2) = curve.derivatives(t);
+        let r = p - q;
+        if r.length_sq() <= ll {
+            return true;
         }
+        // g is half the derivative of the squared distance, h half its second derivative.
+        let g = r.dot(d1);
+        let h = d1.length_sq() + r.dot(d2);
+        if g > 0.0 {
+            hi = t;
+        } else {
+            lo = t;
+        }
+        let newton = t - g / h;
+        let next = if h > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if (next - t).abs() <= 1e-12 * (1.0 + t.abs()) || hi - lo <= 1e-12 * (1.0 + t.abs()) {
+            break;
+        }
+        t = next;
     }
-    fa.min(fb).min(samples[i].1.distance(q))
+    false
 }
 
-/// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`).
-pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Vec<Segment>> {
+/// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`):
+/// its one or two pieces, a piece of zero length left out.
+pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<BiarcPiece>; 2]> {
     let v = p1 - p0;
     let vv = v.length_sq();
     if vv == 0.0 {
@@ -135,7 +227,12 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Vec<Segment
     let d = if denom.abs() < 1e-12 {
         // Parallel end tangents: a straight piece, or the symmetric S-curve.
         if v.cross(t0).abs() <= 1e-12 * vv.sqrt() && v.dot(t0) > 0.0 {
-            return Some(vec![Segment::Line(Line::new(p0, p1))]);
+            let line = BiarcPiece {
+                segment: Segment::Line(Line::new(p0, p1)),
+                start: p0,
+                end: p1,
+            };
+            return Some([Some(line), None]);
         }
         let vt = v.dot(t1);
         if vt.abs() < 1e-300 {
@@ -153,9 +250,11 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Vec<Segment
         0.5 * (p0.x + p1.x + d * (t0.x - t1.x)),
         0.5 * (p0.y + p1.y + d * (t0.y - t1.y)),
     );
+    let piece =
+        |segment: Segment, start, end| (segment.length() > 0.0).then_some(BiarcPiece { segment, start, end });
     let first = arc_from_tangent(p0, t0, j)?;
     let second = arc_from_tangent(p1, -t1, j)?.reversed();
-    Some([first, second].into_iter().filter(|s| s.length() > 0.0).collect())
+    Some([piece(first, p0, j), piece(second, j, p1)])
 }
 
 /// The arc (or line) that leaves `p` along unit tangent `t` and ends at `q`.
@@ -181,13 +280,31 @@ fn arc_from_tangent(p: Point, t: Vector, q: Point) -> Option<Segment> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::distance_from_segment;
+    use crate::import::curve::EllipseArc;
+
+    /// The ellipse x = a·cos t, y = b·sin t.
+    fn ellipse(a: f64, b: f64) -> EllipseArc {
+        EllipseArc {
+            center: Point::ORIGIN,
+            u: Vector::new(a, 0.0),
+            v: Vector::new(0.0, b),
+            t0: 0.0,
+            sweep: std::f64::consts::TAU,
+        }
+    }
 
     #[test]
     fn a_biarc_is_tangent_at_both_ends() {
         let (p0, t0) = (Point::new(0.0, 0.0), Vector::new(1.0, 0.0));
         let (p1, t1) = (Point::new(10.0, 3.0), Vector::new(0.0, 1.0));
-        let segs = biarc(p0, t0, p1, t1).unwrap();
+        let pieces = biarc(p0, t0, p1, t1).unwrap();
+        let segs: Vec<Segment> = pieces.iter().flatten().map(|p| p.segment).collect();
         assert_eq!(segs.len(), 2);
+        for p in pieces.iter().flatten() {
+            assert!(p.segment.start().distance(p.start) < 1e-12);
+            assert!(p.segment.end().distance(p.end) < 1e-12);
+        }
         assert!(segs[0].start().distance(p0) < 1e-9 && segs[1].end().distance(p1) < 1e-9);
         assert!(segs[0].end().distance(segs[1].start()) < 1e-9);
         assert!((segs[0].tangent_at(0.0) - t0).length() < 1e-9);
@@ -199,29 +316,15 @@ mod tests {
     fn an_ellipse_arc_run_backwards_fits_in_a_few_arcs() {
         // A clockwise elliptical arc (t decreasing), as a polyline's negative bulge seen in a
         // tilted plane gives: a fit that mistook the direction would subdivide without end.
-        let eval = |t: f64| {
-            (
-                Point::new(7.3 * t.cos(), 6.9 * t.sin()),
-                Vector::new(-7.3 * t.sin(), 6.9 * t.cos()),
-            )
-        };
+        let ellipse = ellipse(7.3, 6.9);
         let (t0, t1) = (-1.45, -1.45 - 0.103);
         let mut out = Vec::new();
-        fit(
-            &Curve {
-                point: &|t| eval(t).0,
-                with_derivative: &eval,
-            },
-            t0,
-            t1,
-            0.001,
-            &mut out,
-        );
+        fit(&ellipse, t0, t1, 0.001, &mut out);
         assert!(!out.is_empty() && out.len() <= 4, "{} pieces", out.len());
-        assert!(out[0].start().distance(eval(t0).0) < 1e-9);
-        assert!(out[out.len() - 1].end().distance(eval(t1).0) < 1e-9);
+        assert!(out[0].start().distance(ellipse.point(t0)) < 1e-9);
+        assert!(out[out.len() - 1].end().distance(ellipse.point(t1)) < 1e-9);
         for i in 0..=100 {
-            let p = eval(t0 + (t1 - t0) * i as f64 / 100.0).0;
+            let p = ellipse.point(t0 + (t1 - t0) * i as f64 / 100.0);
             let d = out
                 .iter()
                 .map(|s| distance_from_segment(s, p))
@@ -232,27 +335,13 @@ mod tests {
 
     #[test]
     fn an_ellipse_quarter_fits_within_tolerance() {
-        let eval = |t: f64| {
-            (
-                Point::new(30.0 * t.cos(), 10.0 * t.sin()),
-                Vector::new(-30.0 * t.sin(), 10.0 * t.cos()),
-            )
-        };
+        let ellipse = ellipse(30.0, 10.0);
         let mut out = Vec::new();
-        fit(
-            &Curve {
-                point: &|t| eval(t).0,
-                with_derivative: &eval,
-            },
-            0.0,
-            std::f64::consts::FRAC_PI_2,
-            0.001,
-            &mut out,
-        );
+        fit(&ellipse, 0.0, std::f64::consts::FRAC_PI_2, 0.001, &mut out);
         assert!(out.iter().all(|s| matches!(s, Segment::Arc(_))));
         assert!(out.len() < 40, "{} arcs", out.len());
         for i in 0..=1000 {
-            let p = eval(i as f64 / 1000.0 * std::f64::consts::FRAC_PI_2).0;
+            let p = ellipse.point(i as f64 / 1000.0 * std::f64::consts::FRAC_PI_2);
             let d = out
                 .iter()
                 .map(|s| distance_from_segment(s, p))

@@ -2,6 +2,8 @@
 //! arcs in conjugate form (circles and circular arcs included), and NURBS. All of them map exactly
 //! under the affine transforms of block insertion and object coordinate systems.
 
+use super::biarc::SmoothCurve;
+use super::span_polynomial::SpanPolynomial;
 use crate::geom::{Arc, Line, Point, Segment, Vector};
 
 /// An arc that strays less than this from its chord (mm) is a line: huge radii only cost
@@ -199,6 +201,28 @@ impl EllipseArc {
             v: m.vector(self.v),
             ..*self
         }
+    }
+}
+
+impl SmoothCurve for EllipseArc {
+    fn point(&self, t: f64) -> Point {
+        EllipseArc::point(self, t)
+    }
+
+    fn derivatives(&self, t: f64) -> (Point, Vector, Vector) {
+        let (s, c) = t.sin_cos();
+        let radial = self.u * c + self.v * s;
+        (self.center + radial, self.v * c - self.u * s, -radial)
+    }
+}
+
+impl SmoothCurve for SpanPolynomial {
+    fn point(&self, t: f64) -> Point {
+        SpanPolynomial::point(self, t)
+    }
+
+    fn derivatives(&self, t: f64) -> (Point, Vector, Vector) {
+        SpanPolynomial::derivatives(self, t)
     }
 }
 
@@ -424,40 +448,13 @@ impl Curve {
                     for i in 0..pieces {
                         let a = e.t0 + e.sweep * i as f64 / pieces as f64;
                         let b = e.t0 + e.sweep * (i + 1) as f64 / pieces as f64;
-                        let curve = super::biarc::Curve {
-                            point: &|t| e.point(t),
-                            with_derivative: &|t| (e.point(t), e.derivative(t)),
-                        };
-                        super::biarc::fit(&curve, a, b, tolerance, out);
+                        super::biarc::fit(e, a, b, tolerance, out);
                     }
                 }
             },
             Curve::Spline(s) => {
                 for (k, a, b) in s.spans() {
-                    let eval = |t: f64| {
-                        let p = s.point_in_span(k, t);
-                        // One-sided differences inside the span (the curve may have a corner at a
-                        // knot). Where control points repeat, the derivative vanishes at the span's
-                        // end: widen the step until the curve visibly moves, which gives the
-                        // direction it leaves in.
-                        let mut d = crate::geom::Vector::default();
-                        for rel in [1e-7, 1e-5, 1e-3, 1e-2] {
-                            let h = (b - a) * rel;
-                            let (t1, t2) = if t + h <= b { (t, t + h) } else { (t - h, t) };
-                            let (p1, p2) = (s.point_in_span(k, t1), s.point_in_span(k, t2));
-                            d = (p2 - p1) / h;
-                            if p1.distance(p2) > 1e-12 * (1.0 + p.to_vector().length()) {
-                                break;
-                            }
-                        }
-                        (p, d)
-                    };
-                    let point = |t: f64| s.point_in_span(k, t);
-                    let curve = super::biarc::Curve {
-                        point: &point,
-                        with_derivative: &eval,
-                    };
-                    super::biarc::fit(&curve, a, b, tolerance, out);
+                    super::biarc::fit(&SpanPolynomial::new(s, k), a, b, tolerance, out);
                 }
             }
         }

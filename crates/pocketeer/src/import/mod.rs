@@ -19,6 +19,7 @@ mod nodes;
 // Public for the property tests, which check its repair on random contours; not an API.
 #[doc(hidden)]
 pub mod self_crossing;
+pub mod span_polynomial;
 pub mod units;
 mod warning;
 
@@ -258,33 +259,12 @@ fn elements_of(
 }
 
 /// Each placed curve as lines and arcs, in order. Fitting arcs to splines and ellipses is
-/// most of the time a drawing of traced art takes to read, and each curve is fitted alone:
-/// they are shared out among the machine's cores when there are many.
+/// most of the time a drawing of traced art takes to read, and each curve is fitted alone.
 fn curves_to_segments(kept: &[(usize, expand::Placed)]) -> Vec<Vec<Segment>> {
-    let one = |(_, p): &(usize, expand::Placed)| {
+    crate::parallel::map(kept, |(_, p)| {
         let mut segs = Vec::new();
         p.curve.to_segments(CURVE_TOLERANCE, &mut segs);
         segs
-    };
-    let fitted = kept
-        .iter()
-        .filter(|(_, p)| !matches!(p.curve, curve::Curve::Line(..)))
-        .count();
-    let threads = std::thread::available_parallelism().map_or(1, usize::from).min(8);
-    if threads < 2 || fitted < 256 {
-        return kept.iter().map(one).collect();
-    }
-    let chunk = kept.len().div_ceil(threads);
-    std::thread::scope(|scope| {
-        let workers: Vec<_> = kept
-            .chunks(chunk)
-            .map(|part| scope.spawn(move || part.iter().map(one).collect::<Vec<_>>()))
-            .collect();
-        workers
-            .into_iter()
-            // A worker only panics if the fitting does, which the serial path would too.
-            .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
     })
 }
 

@@ -19,8 +19,8 @@ use super::fill::FillRule;
 use super::self_crossing::make_simple;
 use crate::geom::Source;
 use crate::geom::{
-    cluster_points, distance_from_segment, intersect, Aabb, BoxIndex, Contour, Intersection, Piece, Pocket,
-    Point, Segment, Tolerance, WindingIndex,
+    cluster_points, distance_from_segment, intersect, overlapping_pairs, Aabb, BoxIndex, Contour,
+    Intersection, Piece, Pocket, Point, Segment, Tolerance, WindingIndex,
 };
 use crate::import::ImportWarning;
 use crate::union_find::UnionFind;
@@ -111,7 +111,7 @@ pub fn find_pockets(
             .is_some_and(|l| l % 2 == 0)
     };
     let loops = meetings.loops(contours, &depths, &removed, tol, &mut warnings);
-    let pockets = assemble(loops, &mut warnings);
+    let pockets = assemble(loops, tol, &mut warnings);
     // A contour filled into several loops is as deep as its outermost loop.
     let mut drawn_depths = vec![usize::MAX; drawn];
     for (k, &o) in origin.iter().enumerate() {
@@ -142,8 +142,10 @@ fn simplified(
     let layer_name = |c: &ChainedContour| layer_names.get(c.layer).cloned().unwrap_or_default();
     let mut simple = Vec::with_capacity(contours.len());
     let mut origin = Vec::with_capacity(contours.len());
-    for (k, c) in contours.iter().enumerate() {
-        match (make_simple(&c.contour, tol), fill) {
+    // Each contour is checked for crossing itself alone.
+    let checked = crate::parallel::map(contours, |c| make_simple(&c.contour, tol));
+    for (k, (c, made_simple)) in contours.iter().zip(checked).enumerate() {
+        match (made_simple, fill) {
             (Ok((contour, removed)), _) => {
                 for p in removed {
                     warnings.push(ImportWarning::SliverLoopRemoved {
@@ -191,9 +193,21 @@ struct Meetings {
 
 impl Meetings {
     fn find(contours: &[ChainedContour], tol: &Tolerance) -> Meetings {
+        // Only contours whose boxes overlap another's can meet it: the segments of the others
+        // (most contours, in traced art and on island plates) stay out of the segment index.
+        let contour_boxes: Vec<Aabb> = contours
+            .iter()
+            .map(|c| c.contour.bbox().inflated(tol.eps))
+            .collect();
+        let mut may_meet = vec![false; contours.len()];
+        for (a, b) in overlapping_pairs(&contour_boxes) {
+            may_meet[a] = true;
+            may_meet[b] = true;
+        }
         let refs: Vec<SegRef> = contours
             .iter()
             .enumerate()
+            .filter(|&(c, _)| may_meet[c])
             .flat_map(|(c, cc)| (0..cc.contour.segments.len()).map(move |index| SegRef { contour: c, index }))
             .collect();
         let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
@@ -492,33 +506,46 @@ pub(super) fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, us
 
 /// Groups loops into pockets: each clockwise loop goes to the smallest counter-clockwise loop
 /// around it.
-fn assemble(loops: Vec<Contour>, warnings: &mut Vec<ImportWarning>) -> Vec<Pocket> {
+/// Points of a hole tested against the boundaries around it.
+const OWNER_PROBES: usize = 8;
+
+fn assemble(loops: Vec<Contour>, tol: &Tolerance, warnings: &mut Vec<ImportWarning>) -> Vec<Pocket> {
     let (outer, holes): (Vec<Contour>, Vec<Contour>) = loops.into_iter().partition(Contour::is_ccw);
-    let mut pockets: Vec<Pocket> = outer
+    // Largest first; the area is a pass over the boundary, computed once per pocket.
+    let mut by_area: Vec<(f64, Contour)> = outer.into_iter().map(|b| (b.signed_area(), b)).collect();
+    by_area.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut pockets: Vec<Pocket> = by_area
         .into_iter()
-        .map(|boundary| Pocket {
+        .map(|(_, boundary)| Pocket {
             boundary,
             islands: Vec::new(),
         })
         .collect();
-    pockets.sort_by(|a, b| b.boundary.signed_area().total_cmp(&a.boundary.signed_area()));
-    let boxes: Vec<Aabb> = pockets.iter().map(|p| p.boundary.bbox()).collect();
+    let areas: Vec<f64> = pockets.iter().map(|p| p.boundary.signed_area()).collect();
+    // A hole touching its boundary's extreme reaches it to within rounding, either side.
+    let boxes: Vec<Aabb> = pockets
+        .iter()
+        .map(|p| p.boundary.bbox().inflated(tol.eps))
+        .collect();
     let index = BoxIndex::new(&boxes);
     let owners: Vec<Option<usize>> = {
         let locator = Locator::new(pockets.iter().map(|p| &p.boundary).collect());
         holes
             .iter()
             .map(|hole| {
-                let probe = *samples(hole, 1).first()?;
+                // A hole may touch its boundary at points (loops that meet there were cut
+                // apart), and a single probe may fall on one: the owner is the smallest
+                // boundary around most of the probes. An even count keeps the probes off the
+                // hole's two ends by length, where a loop cut at two points has its corners.
+                let probes = samples(hole, OWNER_PROBES);
+                let extent = hole.bbox();
                 index
-                    .at_point(probe)
-                    .filter(|&k| boxes[k].contains_box(&hole.bbox()) && locator.contains(k, probe))
-                    .min_by(|&a, &b| {
-                        pockets[a]
-                            .boundary
-                            .signed_area()
-                            .total_cmp(&pockets[b].boundary.signed_area())
+                    .intersecting(&extent)
+                    .filter(|&k| boxes[k].contains_box(&extent))
+                    .filter(|&k| {
+                        2 * probes.iter().filter(|&&p| locator.contains(k, p)).count() > probes.len()
                     })
+                    .min_by(|&a, &b| areas[a].total_cmp(&areas[b]))
             })
             .collect()
     };
@@ -532,4 +559,33 @@ fn assemble(loops: Vec<Contour>, warnings: &mut Vec<ImportWarning>) -> Vec<Pocke
         }
     }
     pockets
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_hole_touching_its_boundary_where_it_is_probed_is_still_an_island() {
+        // A diamond hole touching the square's top and bottom edges: the middle of the hole by
+        // length is a touching point, on the boundary, where inside and outside are a toss-up.
+        let square = Contour::polygon(&[
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(10.0, 10.0),
+            Point::new(0.0, 10.0),
+        ]);
+        let diamond = Contour::polygon(&[
+            Point::new(5.0, 0.0),
+            Point::new(2.0, 5.0),
+            Point::new(5.0, 10.0),
+            Point::new(8.0, 5.0),
+        ]);
+        assert!(!diamond.is_ccw());
+        let mut warnings = Vec::new();
+        let pockets = assemble(vec![square, diamond], &Tolerance::default(), &mut warnings);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(pockets.len(), 1);
+        assert_eq!(pockets[0].islands.len(), 1);
+    }
 }

@@ -1,0 +1,220 @@
+//! One knot span of a NURBS as a polynomial in power form, evaluated by Horner's rule with its
+//! first and second derivatives: the curve fitting evaluates each span hundreds of times, and
+//! de Boor's algorithm costs a triangle of interpolations per point where Horner costs a row.
+
+use super::curve::{Nurbs, MAX_DEGREE};
+use crate::geom::{Point, Vector};
+
+/// The piece of a NURBS on one knot span `[a, b]`, as homogeneous coordinates `(x·w, y·w, w)`
+/// that are polynomials in `s = (t − a) / (b − a)` ∈ [0, 1].
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// use pocketeer::import::curve::Nurbs;
+/// use pocketeer::import::span_polynomial::SpanPolynomial;
+/// let pts = [Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(3.0, 3.0), Point::new(4.0, 0.0), Point::new(6.0, 1.0)];
+/// let s = Nurbs::through(&pts).unwrap();
+/// for (k, a, b) in s.spans() {
+///     let poly = SpanPolynomial::new(&s, k);
+///     let t = 0.3 * a + 0.7 * b;
+///     assert!(poly.point(t).distance(s.point_in_span(k, t)) < 1e-12);
+/// }
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpanPolynomial {
+    degree: usize,
+    /// The span's first parameter.
+    start: f64,
+    /// 1 / (b − a): ds/dt.
+    rate: f64,
+    /// Coefficients of s^0 … s^degree of (x·w, y·w, w).
+    coefficients: [[f64; 3]; MAX_DEGREE + 1],
+}
+
+impl SpanPolynomial {
+    /// The piece of `nurbs` on its knot span `k` (one of [`Nurbs::spans`], which have
+    /// `knots[k] < knots[k + 1]`).
+    pub fn new(nurbs: &Nurbs, k: usize) -> SpanPolynomial {
+        let p = nurbs.degree;
+        let (a, b) = (nurbs.knots[k], nurbs.knots[k + 1]);
+        // The span's Bézier control points are the blossom of the piece at (a, …, a, b, …, b):
+        // i copies of b for the i-th. De Boor's algorithm with a parameter of its own at each
+        // level computes exactly the blossom.
+        let mut bezier = [[0.0f64; 3]; MAX_DEGREE + 1];
+        for (i, point) in bezier.iter_mut().enumerate().take(p + 1) {
+            *point = blossom(nurbs, k, |level| if level <= i { b } else { a });
+        }
+        // Bézier to power form: c_j = C(p, j) Σ_{i ≤ j} (−1)^(j−i) C(j, i) B_i.
+        let mut coefficients = [[0.0f64; 3]; MAX_DEGREE + 1];
+        for (j, c) in coefficients.iter_mut().enumerate().take(p + 1) {
+            for (i, point) in bezier.iter().enumerate().take(j + 1) {
+                let sign = if (j - i) % 2 == 0 { 1.0 } else { -1.0 };
+                let f = sign * binomial(j, i);
+                for (cv, bv) in c.iter_mut().zip(point) {
+                    *cv += f * bv;
+                }
+            }
+            let f = binomial(p, j);
+            for cv in c.iter_mut() {
+                *cv *= f;
+            }
+        }
+        SpanPolynomial {
+            degree: p,
+            start: a,
+            rate: 1.0 / (b - a),
+            coefficients,
+        }
+    }
+
+    /// The point at parameter `t`.
+    pub fn point(&self, t: f64) -> Point {
+        let s = (t - self.start) * self.rate;
+        let c = &self.coefficients;
+        let mut n = c[self.degree];
+        for cj in c[..self.degree].iter().rev() {
+            for (nv, cv) in n.iter_mut().zip(cj) {
+                *nv = *nv * s + cv;
+            }
+        }
+        Point::new(n[0] / n[2], n[1] / n[2])
+    }
+
+    /// The point at parameter `t` with the curve's first and second derivatives there (with
+    /// respect to `t`).
+    pub fn derivatives(&self, t: f64) -> (Point, Vector, Vector) {
+        let s = (t - self.start) * self.rate;
+        let c = &self.coefficients;
+        // Horner's rule for the value, the first derivative and half the second at once.
+        let mut n = c[self.degree];
+        let mut n1 = [0.0f64; 3];
+        let mut n2 = [0.0f64; 3];
+        for cj in c[..self.degree].iter().rev() {
+            for v in 0..3 {
+                n2[v] = n2[v] * s + n1[v];
+                n1[v] = n1[v] * s + n[v];
+                n[v] = n[v] * s + cj[v];
+            }
+        }
+        let w = n[2];
+        let (w1, w2) = (n1[2], 2.0 * n2[2]);
+        let p = Vector::new(n[0] / w, n[1] / w);
+        // The quotient rule for (x·w, y·w) / w.
+        let d1 = (Vector::new(n1[0], n1[1]) - p * w1) / w;
+        let d2 = (Vector::new(2.0 * n2[0], 2.0 * n2[1]) - d1 * (2.0 * w1) - p * w2) / w;
+        (Point::new(p.x, p.y), d1 * self.rate, d2 * (self.rate * self.rate))
+    }
+}
+
+/// The blossom of the homogeneous piece of `nurbs` on span `k` at the parameters
+/// `param(1), …, param(degree)`.
+fn blossom(nurbs: &Nurbs, k: usize, param: impl Fn(usize) -> f64) -> [f64; 3] {
+    let p = nurbs.degree;
+    let mut d = [[0.0f64; 3]; MAX_DEGREE + 1];
+    for (j, dj) in d.iter_mut().enumerate().take(p + 1) {
+        let i = k + j - p;
+        let w = nurbs.weights[i];
+        *dj = [nurbs.points[i].x * w, nurbs.points[i].y * w, w];
+    }
+    for r in 1..=p {
+        let t = param(r);
+        for j in (r..=p).rev() {
+            let i = k + j - p;
+            let denom = nurbs.knots[i + p + 1 - r] - nurbs.knots[i];
+            let alpha = if denom == 0.0 {
+                0.0
+            } else {
+                (t - nurbs.knots[i]) / denom
+            };
+            let prev = d[j - 1];
+            for (c, v) in d[j].iter_mut().enumerate() {
+                *v = (1.0 - alpha) * prev[c] + alpha * *v;
+            }
+        }
+    }
+    d[p]
+}
+
+/// The binomial coefficient C(n, k), exactly for the small n of spline degrees.
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn spline(degree: usize, points: Vec<(f64, f64)>, weights: Vec<f64>, gaps: Vec<f64>) -> Nurbs {
+        let n = points.len();
+        let mut knots = Vec::with_capacity(n + degree + 1);
+        let mut u = 0.0;
+        for g in gaps.iter().take(n + degree + 1) {
+            knots.push(u);
+            u += g;
+        }
+        Nurbs {
+            degree,
+            knots,
+            points: points.into_iter().map(|(x, y)| Point::new(x, y)).collect(),
+            weights: weights.into_iter().take(n).collect(),
+        }
+    }
+
+    fn arb_spline() -> impl Strategy<Value = Nurbs> {
+        (1usize..=5).prop_flat_map(|degree| {
+            (degree + 1..degree + 8).prop_flat_map(move |n| {
+                (
+                    prop::collection::vec((-100.0..100.0f64, -100.0..100.0f64), n),
+                    prop::collection::vec(0.2..5.0f64, n),
+                    // Zero gaps give repeated knots.
+                    prop::collection::vec(prop_oneof![Just(0.0), 0.1..3.0f64], n + degree + 1),
+                )
+                    .prop_map(move |(p, w, g)| spline(degree, p, w, g))
+            })
+        })
+    }
+
+    proptest! {
+        /// The power form agrees with de Boor's algorithm on every span, and its derivatives
+        /// with central differences of itself.
+        #[test]
+        fn the_power_form_is_the_span_de_boor_evaluates(s in arb_spline(), f in 0.0..1.0f64) {
+            for (k, a, b) in s.spans() {
+                let poly = SpanPolynomial::new(&s, k);
+                let t = a + (b - a) * f;
+                let scale = 1.0 + s.point_in_span(k, t).to_vector().length();
+                prop_assert!(poly.point(t).distance(s.point_in_span(k, t)) <= 1e-9 * scale);
+                let (p, d1, d2) = poly.derivatives(t);
+                prop_assert!(p.distance(poly.point(t)) <= 1e-9 * scale);
+                let h = (b - a) * 1e-5;
+                let (pm, pp) = (poly.derivatives(t - h), poly.derivatives(t + h));
+                let fd1 = (pp.0 - pm.0) / (2.0 * h);
+                let fd2 = (pp.1 - pm.1) / (2.0 * h);
+                let size1 = 1.0 + d1.length() + fd1.length();
+                let size2 = 1.0 + d2.length() + fd2.length();
+                prop_assert!((d1 - fd1).length() <= 1e-4 * size1, "{d1:?} {fd1:?}");
+                prop_assert!((d2 - fd2).length() <= 1e-4 * size2, "{d2:?} {fd2:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_quarter_circle_as_a_rational_quadratic_has_unit_speed_times_its_radius_squared() {
+        // The rational quadratic with weights 1, √½, 1 is exactly a quarter of the unit circle.
+        let r = std::f64::consts::FRAC_1_SQRT_2;
+        let s = Nurbs {
+            degree: 2,
+            knots: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            points: vec![Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)],
+            weights: vec![1.0, r, 1.0],
+        };
+        let poly = SpanPolynomial::new(&s, 2);
+        for i in 0..=10 {
+            let (p, d1, _) = poly.derivatives(i as f64 / 10.0);
+            assert!((p.to_vector().length() - 1.0).abs() < 1e-12);
+            // The tangent is perpendicular to the radius.
+            assert!(p.to_vector().dot(d1).abs() < 1e-12);
+        }
+    }
+}
