@@ -50,8 +50,8 @@ pub fn flattened(case: &Case) -> clipper2::Paths<TenNano> {
                 let steps = match s {
                     pocketeer::geom::Segment::Line(_) => 1,
                     pocketeer::geom::Segment::Arc(a) => {
-                        let max_step = 2.0 * (1.0 - 0.001 / a.radius).clamp(-1.0, 1.0).acos();
-                        (a.sweep.abs() / max_step).ceil().max(1.0) as usize
+                        let max_step = 2.0 * (1.0 - 0.001 / a.radius()).clamp(-1.0, 1.0).acos();
+                        (a.sweep().abs() / max_step).ceil().max(1.0) as usize
                     }
                 };
                 for k in 0..steps {

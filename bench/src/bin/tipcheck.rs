@@ -105,14 +105,14 @@ fn main() {
         poly += 0.5 * (from.cross(a) + a.cross(b));
         from = b;
         if let Segment::Arc(arc) = s {
-            let th = arc.sweep.abs();
+            let th = arc.sweep().abs();
             // theta - sin(theta) by its series for small angles.
             let tms = if th < 1e-2 {
                 th.powi(3) / 6.0 - th.powi(5) / 120.0 + th.powi(7) / 5040.0
             } else {
                 th - th.sin()
             };
-            segs_area += arc.sweep.signum() * 0.5 * arc.radius * arc.radius * tms;
+            segs_area += arc.sweep().signum() * 0.5 * arc.radius() * arc.radius() * tms;
         }
     }
     let cav: f64 = theirs

@@ -394,10 +394,10 @@ fn corpus_offsets_match_an_independent_erosion() {
         let el = |s: &pocketeer::geom::Segment| match s {
             pocketeer::geom::Segment::Line(l) => El::Line((l.start.x, l.start.y), (l.end.x, l.end.y)),
             pocketeer::geom::Segment::Arc(a) => El::Arc {
-                c: (a.center.x, a.center.y),
-                r: a.radius,
-                a0: a.start_angle,
-                sweep: a.sweep,
+                c: (a.center().x, a.center().y),
+                r: a.radius(),
+                a0: a.start_angle(),
+                sweep: a.sweep(),
             },
         };
         // Pockets are offset one by one, and may overlap: each is judged with the loops that

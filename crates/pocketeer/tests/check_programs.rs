@@ -174,7 +174,9 @@ fn plain_offsets_program(pocket: &Pocket, r: f64, stepover: f64, depth: f64) -> 
             for seg in &l.segments {
                 match seg {
                     Segment::Line(line) => path.line(Point3::at(line.end, -depth), Feed::Cut),
-                    Segment::Arc(a) => path.arc_to(Point3::at(a.end(), -depth), a.center, a.sweep, Feed::Cut),
+                    Segment::Arc(a) => {
+                        path.arc_to(Point3::at(a.end(), -depth), a.center(), a.sweep(), Feed::Cut)
+                    }
                 }
             }
             path.line(Point3::at(s, 0.0), Feed::Cut);

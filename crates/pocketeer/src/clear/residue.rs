@@ -153,7 +153,7 @@ impl Gap<'_> {
             // Along an arc the normals fan out: a point u along the normal moves (1 + u/ρ)
             // times as fast as its foot.
             let stretch = match seg {
-                Segment::Arc(a) => 1.0 + self.reach / a.radius,
+                Segment::Arc(a) => 1.0 + self.reach / a.radius(),
                 Segment::Line(_) => 1.0,
             };
             let n = ((seg.length() * stretch / self.slack).ceil() as usize).clamp(1, 1 << 20);

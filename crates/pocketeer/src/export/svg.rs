@@ -47,7 +47,7 @@ pub fn open_path_data(segments: &[Segment]) -> String {
             }
             Segment::Arc(a) => {
                 // SVG cannot draw a whole circle in one arc: draw it in halves.
-                let halves = if a.sweep.abs() > std::f64::consts::PI * 1.5 {
+                let halves = if a.sweep().abs() > std::f64::consts::PI * 1.5 {
                     2
                 } else {
                     1
@@ -55,9 +55,9 @@ pub fn open_path_data(segments: &[Segment]) -> String {
                 for h in 0..halves {
                     let piece = a.subsegment(h as f64 / halves as f64, (h + 1) as f64 / halves as f64);
                     let e = piece.end();
-                    let large = u8::from(piece.sweep.abs() > std::f64::consts::PI);
-                    let sweep = u8::from(piece.sweep > 0.0);
-                    let r = num(a.radius);
+                    let large = u8::from(piece.sweep().abs() > std::f64::consts::PI);
+                    let sweep = u8::from(piece.sweep() > 0.0);
+                    let r = num(a.radius());
                     let _ = write!(d, " A{r} {r} 0 {large} {sweep} {} {}", num(e.x), num(e.y));
                 }
             }

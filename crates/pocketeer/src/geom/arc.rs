@@ -17,17 +17,28 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 /// assert!((a.length() - PI).abs() < 1e-12);
 /// assert!(a.is_ccw());
 /// ```
+///
+/// The end points are computed once, when the arc is made: most of what is asked of an arc
+/// (its box, its area term, joining it to its neighbours) needs them, and the trigonometry
+/// was a fifth of the time of reading a drawing of splines. The fields are therefore read
+/// through methods, so that they cannot drift from the end points.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Arc {
-    /// Centre.
-    pub center: Point,
-    /// Radius (> 0).
-    pub radius: f64,
-    /// Angle of the start point, radians.
-    pub start_angle: f64,
-    /// Signed sweep, radians: positive counter-clockwise.
-    pub sweep: f64,
+    center: Point,
+    radius: f64,
+    start_angle: f64,
+    sweep: f64,
+    #[serde(skip)]
+    start: Point,
+    #[serde(skip)]
+    end: Point,
 }
+
+/// An end this close to the circle, relative to the radius, is on it.
+const ON_CIRCLE: f64 = 1e-12;
+
+/// A sweep this close to a whole turn is a full circle.
+const FULL_TURN: f64 = TAU * (1.0 - 1e-14);
 
 /// `angle` reduced to [0, 2π).
 pub fn normalize_angle(angle: f64) -> f64 {
@@ -41,17 +52,45 @@ pub fn normalize_angle(angle: f64) -> f64 {
 
 impl Arc {
     /// An arc from its centre, radius, start angle and signed sweep.
-    pub const fn new(center: Point, radius: f64, start_angle: f64, sweep: f64) -> Arc {
+    pub fn new(center: Point, radius: f64, start_angle: f64, sweep: f64) -> Arc {
+        let start = center + Vector::from_angle(start_angle) * radius;
+        let end = if sweep.abs() >= FULL_TURN {
+            start
+        } else {
+            center + Vector::from_angle(start_angle + sweep) * radius
+        };
         Arc {
             center,
             radius,
             start_angle,
             sweep,
+            start,
+            end,
         }
     }
 
+    /// Centre.
+    pub fn center(&self) -> Point {
+        self.center
+    }
+
+    /// Radius (> 0).
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Angle of the start point, radians.
+    pub fn start_angle(&self) -> f64 {
+        self.start_angle
+    }
+
+    /// Signed sweep, radians: positive counter-clockwise.
+    pub fn sweep(&self) -> f64 {
+        self.sweep
+    }
+
     /// A full counter-clockwise circle starting at angle 0.
-    pub const fn circle(center: Point, radius: f64) -> Arc {
+    pub fn circle(center: Point, radius: f64) -> Arc {
         Arc::new(center, radius, 0.0, TAU)
     }
 
@@ -61,8 +100,8 @@ impl Arc {
     /// ```
     /// use pocketeer::geom::{Arc, Point};
     /// let half = Arc::from_bulge(Point::new(1.0, 0.0), Point::new(-1.0, 0.0), 1.0).unwrap();
-    /// assert!((half.radius - 1.0).abs() < 1e-12);
-    /// assert!(half.center.distance(Point::new(0.0, 0.0)) < 1e-12);
+    /// assert!((half.radius() - 1.0).abs() < 1e-12);
+    /// assert!(half.center().distance(Point::new(0.0, 0.0)) < 1e-12);
     /// ```
     pub fn from_bulge(start: Point, end: Point, bulge: f64) -> Option<Arc> {
         let chord = end - start;
@@ -73,7 +112,9 @@ impl Arc {
         let center = start.midpoint(end) + chord.perp() * ((1.0 - bulge * bulge) / (4.0 * bulge));
         let radius = center.distance(start);
         let start_angle = (start - center).angle();
-        Some(Arc::new(center, radius, start_angle, sweep))
+        // Both ends are on the arc by construction: kept as given, so that arcs and lines
+        // joined end to end in a drawing stay joined exactly.
+        Some(Arc::with_ends(center, radius, start_angle, sweep, start, end))
     }
 
     /// The arc around `center` from `start` to `end` (the end is projected on the circle through
@@ -90,7 +131,33 @@ impl Arc {
         if sweep == 0.0 {
             sweep = if ccw { TAU } else { -TAU };
         }
-        Arc::new(center, radius, a0, sweep)
+        if sweep.abs() >= FULL_TURN {
+            return Arc::with_ends(center, radius, a0, sweep, start, start);
+        }
+        // An end on the circle to within rounding is kept as given (the meeting point of two
+        // arcs stays one point); one off it is moved onto it.
+        let off = end - center;
+        let reach = off.length();
+        let end = if reach == 0.0 {
+            center + Vector::from_angle(a1) * radius
+        } else if (reach - radius).abs() <= ON_CIRCLE * radius {
+            end
+        } else {
+            center + off * (radius / reach)
+        };
+        Arc::with_ends(center, radius, a0, sweep, start, end)
+    }
+
+    /// The arc with its end points given, on it to within rounding.
+    fn with_ends(center: Point, radius: f64, start_angle: f64, sweep: f64, start: Point, end: Point) -> Arc {
+        Arc {
+            center,
+            radius,
+            start_angle,
+            sweep,
+            start,
+            end,
+        }
     }
 
     /// DXF bulge: tan(sweep / 4).
@@ -123,7 +190,7 @@ impl Arc {
 
     /// True for a full circle.
     pub fn is_full_circle(&self) -> bool {
-        self.sweep.abs() >= TAU * (1.0 - 1e-14)
+        self.sweep.abs() >= FULL_TURN
     }
 
     /// Angle at parameter `t`.
@@ -147,15 +214,12 @@ impl Arc {
 
     /// Start point.
     pub fn start(&self) -> Point {
-        self.point_at_angle(self.start_angle)
+        self.start
     }
 
     /// End point.
     pub fn end(&self) -> Point {
-        if self.is_full_circle() {
-            return self.start();
-        }
-        self.point_at_angle(self.end_angle())
+        self.end
     }
 
     /// Unit tangent in the direction of travel at parameter `t`.
@@ -237,19 +301,43 @@ impl Arc {
         b
     }
 
-    /// The same arc run the other way.
+    /// The same arc run the other way: its ends swapped exactly.
     pub fn reversed(&self) -> Arc {
-        Arc::new(self.center, self.radius, self.end_angle(), -self.sweep)
+        Arc::with_ends(
+            self.center,
+            self.radius,
+            self.end_angle(),
+            -self.sweep,
+            self.end,
+            self.start,
+        )
     }
 
-    /// The piece between parameters `t0` and `t1`.
+    /// The piece between parameters `t0` and `t1` (an end at 0 or 1 is the arc's own).
     pub fn subsegment(&self, t0: f64, t1: f64) -> Arc {
-        Arc::new(
+        let piece = Arc::new(
             self.center,
             self.radius,
             self.angle_at(t0),
             self.sweep * (t1 - t0),
-        )
+        );
+        if piece.is_full_circle() {
+            return piece;
+        }
+        let end_at = |t: f64, computed: Point| {
+            if t == 0.0 {
+                self.start
+            } else if t == 1.0 {
+                self.end
+            } else {
+                computed
+            }
+        };
+        Arc {
+            start: end_at(t0, piece.start),
+            end: end_at(t1, piece.end),
+            ..piece
+        }
     }
 
     /// The two pieces on either side of parameter `t`.

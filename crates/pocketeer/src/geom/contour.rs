@@ -168,7 +168,7 @@ fn crossings_in_box(seg: &Segment, from: Point, p: Point) -> i32 {
             // passes such a point at most three times.
             let mut cuts = [0.0; 5];
             let mut n = 1;
-            let (a0, sw) = (arc.start_angle, arc.sweep);
+            let (a0, sw) = (arc.start_angle(), arc.sweep());
             let (lo, hi) = (a0.min(a0 + sw), a0.max(a0 + sw));
             let mut angle = PI / 2.0 + ((lo - PI / 2.0) / PI).ceil() * PI;
             while angle < hi && n < 4 {
@@ -188,12 +188,12 @@ fn crossings_in_box(seg: &Segment, from: Point, p: Point) -> i32 {
                 let q1 = arc.point_at(w[1]);
                 let right = arc.angle_at(0.5 * (w[0] + w[1])).cos() > 0.0;
                 total += ray_crossing(q0, q1, p, |y| {
-                    let dy = y - arc.center.y;
-                    let dx = ((arc.radius - dy) * (arc.radius + dy)).max(0.0).sqrt();
+                    let dy = y - arc.center().y;
+                    let dx = ((arc.radius() - dy) * (arc.radius() + dy)).max(0.0).sqrt();
                     if right {
-                        arc.center.x + dx
+                        arc.center().x + dx
                     } else {
-                        arc.center.x - dx
+                        arc.center().x - dx
                     }
                 });
             }

@@ -12,7 +12,7 @@ pub fn closest_param(seg: &Segment, p: Point) -> f64 {
 }
 
 fn arc_closest_param(a: &Arc, p: Point) -> f64 {
-    let v = p - a.center;
+    let v = p - a.center();
     if v.length_sq() == 0.0 {
         return 0.0; // every point of the arc is equally near the centre
     }
@@ -44,9 +44,9 @@ pub fn distance_from_segment(seg: &Segment, p: Point) -> f64 {
     match seg {
         Segment::Line(l) => line_point_distance(l, p),
         Segment::Arc(a) => {
-            let v = p - a.center;
+            let v = p - a.center();
             if v.length_sq() > 0.0 && a.contains_angle(v.angle(), 0.0) {
-                (v.length() - a.radius).abs()
+                (v.length() - a.radius()).abs()
             } else {
                 closest_point(seg, p).distance(p)
             }
@@ -62,9 +62,9 @@ pub(crate) fn line_point_distance(l: &Line, p: Point) -> f64 {
 /// Distance from `p` to the arc `a` whose end points `start` and `end` are already known:
 /// [`distance_from_segment`] without trigonometry, for indexes that measure the same arcs often.
 pub(crate) fn arc_point_distance_with_ends(a: &Arc, start: Point, end: Point, p: Point) -> f64 {
-    let v = p - a.center;
-    if in_sweep(a.sweep, start - a.center, end - a.center, v) {
-        (v.length() - a.radius).abs()
+    let v = p - a.center();
+    if in_sweep(a.sweep(), start - a.center(), end - a.center(), v) {
+        (v.length() - a.radius()).abs()
     } else {
         start.distance(p).min(end.distance(p))
     }
@@ -140,16 +140,16 @@ pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Poin
 fn interior_candidates(arc: &Arc, other: &Segment) -> Vec<Point> {
     let target = match other {
         // The foot of the centre on the line: the arc point towards it is nearest to the line.
-        Segment::Line(l) => l.point_at(l.param_of(arc.center).clamp(0.0, 1.0)),
-        Segment::Arc(o) => o.center,
+        Segment::Line(l) => l.point_at(l.param_of(arc.center()).clamp(0.0, 1.0)),
+        Segment::Arc(o) => o.center(),
     };
-    let v = target - arc.center;
+    let v = target - arc.center();
     let Some(u) = v.normalized() else {
         return Vec::new();
     };
     [u, -u]
         .into_iter()
         .filter(|d| arc.contains_angle(d.angle(), 0.0))
-        .map(|d| arc.center + d * arc.radius)
+        .map(|d| arc.center() + d * arc.radius())
         .collect()
 }

@@ -72,6 +72,33 @@ pub fn overlapping_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
     out
 }
 
+/// The pairs `(i, j)`, `i < j`, of `boxes` that overlap (touching counts), sorted, by the
+/// cheaper way: the sweep of [`for_each_overlapping_pair`] while few boxes are open at once
+/// (a contour's pieces, in order along it), else a [`BoxIndex`] (a spiral, where a sweep line
+/// crosses every turn). The same pairs as [`BoxIndex::pairs`] either way.
+///
+/// ```
+/// use pocketeer::geom::{box_pairs, Aabb, BoxIndex, Point};
+/// let b = |x0, y0, x1, y1| Aabb::from_points(Point::new(x0, y0), Point::new(x1, y1));
+/// let boxes = [b(0.0, 0.0, 2.0, 2.0), b(1.0, 1.0, 3.0, 3.0), b(5.0, 0.0, 6.0, 1.0), b(2.0, 3.0, 3.0, 6.0)];
+/// assert_eq!(box_pairs(&boxes), vec![(0, 1), (1, 3)]);
+/// assert_eq!(box_pairs(&boxes), BoxIndex::new(&boxes).pairs());
+/// ```
+pub fn box_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
+    // About what building and walking the tree costs, in box comparisons.
+    let budget = 16 * boxes.len() as u64 + 1024;
+    let mut out = Vec::new();
+    let swept = for_each_overlapping_pair(boxes, budget, |i, j| {
+        out.push((i, j));
+        true
+    });
+    if swept.is_err() {
+        return BoxIndex::new(boxes).pairs();
+    }
+    out.sort_unstable();
+    out
+}
+
 /// Calls `f(i, j)` once for every pair of `boxes` that overlap (touching counts), in the
 /// order of a sweep along the axis where the boxes are thinnest relative to the whole extent.
 /// For the rings of small pieces an offset makes, few boxes are open at once, and this is

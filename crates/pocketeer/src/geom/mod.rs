@@ -22,7 +22,7 @@ pub use arc::{normalize_angle, Arc};
 pub use cluster::{cluster_points, cluster_points_by};
 pub use contour::{signed_area, winding_number, Contour, WindingIndex};
 pub use distance::{closest_param, closest_point, distance_from_segment, segment_distance};
-pub use index::{for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
+pub use index::{box_pairs, for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
 pub use packed::{PackedTree, Search};

@@ -124,7 +124,7 @@ impl Segment {
         let chord = (self.start() - o).cross(self.end() - o);
         match self {
             Segment::Line(_) => chord,
-            Segment::Arc(a) => chord + a.radius * a.radius * (a.sweep - a.sweep.sin()),
+            Segment::Arc(a) => chord + a.radius() * a.radius() * (a.sweep() - a.sweep().sin()),
         }
     }
 
@@ -133,10 +133,10 @@ impl Segment {
         match self {
             Segment::Line(l) => l.start.is_finite() && l.end.is_finite(),
             Segment::Arc(a) => {
-                a.center.is_finite()
-                    && a.radius.is_finite()
-                    && a.start_angle.is_finite()
-                    && a.sweep.is_finite()
+                a.center().is_finite()
+                    && a.radius().is_finite()
+                    && a.start_angle().is_finite()
+                    && a.sweep().is_finite()
             }
         }
     }
@@ -145,7 +145,7 @@ impl Segment {
     pub fn translated(&self, v: Vector) -> Segment {
         match self {
             Segment::Line(l) => Segment::Line(Line::new(l.start + v, l.end + v)),
-            Segment::Arc(a) => Segment::Arc(Arc::new(a.center + v, a.radius, a.start_angle, a.sweep)),
+            Segment::Arc(a) => Segment::Arc(Arc::new(a.center() + v, a.radius(), a.start_angle(), a.sweep())),
         }
     }
 
@@ -155,9 +155,12 @@ impl Segment {
         let rot = |p: Point| Point::new(c * p.x - s * p.y, s * p.x + c * p.y);
         match self {
             Segment::Line(l) => Segment::Line(Line::new(rot(l.start), rot(l.end))),
-            Segment::Arc(a) => {
-                Segment::Arc(Arc::new(rot(a.center), a.radius, a.start_angle + angle, a.sweep))
-            }
+            Segment::Arc(a) => Segment::Arc(Arc::new(
+                rot(a.center()),
+                a.radius(),
+                a.start_angle() + angle,
+                a.sweep(),
+            )),
         }
     }
 }

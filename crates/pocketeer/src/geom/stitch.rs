@@ -213,7 +213,7 @@ fn turn_key(incoming: Vector, next: &Segment) -> (f64, f64) {
     }
     let curvature = match next {
         Segment::Line(_) => 0.0,
-        Segment::Arc(a) => a.sweep.signum() / a.radius,
+        Segment::Arc(a) => a.sweep().signum() / a.radius(),
     };
     (angle, curvature)
 }

@@ -96,10 +96,10 @@ impl BiarcPiece {
         match &self.segment {
             Segment::Line(l) => line_point_distance(l, q) <= limit,
             Segment::Arc(a) => {
-                let v = q - a.center;
-                if in_sweep(a.sweep, self.start - a.center, self.end - a.center, v) {
+                let v = q - a.center();
+                if in_sweep(a.sweep(), self.start - a.center(), self.end - a.center(), v) {
                     // | |v| − r | ≤ limit without the square root.
-                    let (lo, hi) = ((a.radius - limit).max(0.0), a.radius + limit);
+                    let (lo, hi) = ((a.radius() - limit).max(0.0), a.radius() + limit);
                     let vv = v.length_sq();
                     vv <= hi * hi && vv >= lo * lo
                 } else {
@@ -113,7 +113,7 @@ impl BiarcPiece {
     /// The points dividing the piece into `ARC_PROBES` equal parts, ends excluded.
     fn probes(&self) -> impl Iterator<Item = Point> + '_ {
         let (center, step) = match &self.segment {
-            Segment::Arc(a) => (a.center, a.sweep / ARC_PROBES as f64),
+            Segment::Arc(a) => (a.center(), a.sweep() / ARC_PROBES as f64),
             Segment::Line(_) => (self.start, 0.0),
         };
         let (sin, cos) = step.sin_cos();

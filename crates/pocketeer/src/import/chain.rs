@@ -319,7 +319,7 @@ fn take_full_circles(elements: &[Element], alive: &mut [bool], tol: &Tolerance, 
         if let Segment::Arc(a) = e.segment {
             if alive[i] && a.is_full_circle() {
                 alive[i] = false;
-                if a.radius <= node_distance(tol) {
+                if a.radius() <= node_distance(tol) {
                     out.zero_length_dropped += 1;
                 } else {
                     out.contours.push(ChainedContour {
@@ -480,7 +480,7 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
             // other side of the circle is not meant; the midpoint tells.
             let m = arc.point_at(0.5);
             key.extend([
-                arc.radius.to_bits(),
+                arc.radius().to_bits(),
                 (m.x as f32).to_bits() as u64,
                 (m.y as f32).to_bits() as u64,
             ]);
@@ -530,8 +530,8 @@ fn covers(outer: &Segment, inner: &Segment, tol: f64) -> bool {
     match (outer, inner) {
         (Segment::Line(_), Segment::Line(l)) => on(l.start) && on(l.end),
         (Segment::Arc(a), Segment::Arc(b)) => {
-            a.center.distance(b.center) <= tol
-                && (a.radius - b.radius).abs() <= tol
+            a.center().distance(b.center()) <= tol
+                && (a.radius() - b.radius()).abs() <= tol
                 && (0..=4).all(|k| on(inner.point_at(k as f64 / 4.0)))
         }
         _ => false,
@@ -670,10 +670,10 @@ fn snapped(seg: &Segment, rev: bool, i: usize, nodes: &Nodes) -> Segment {
             if a == b {
                 // Ends joined into one node: a closed arc.
                 Segment::Arc(Arc::new(
-                    arc.center,
-                    arc.radius,
-                    (a - arc.center).angle(),
-                    arc.sweep.signum() * std::f64::consts::TAU,
+                    arc.center(),
+                    arc.radius(),
+                    (a - arc.center()).angle(),
+                    arc.sweep().signum() * std::f64::consts::TAU,
                 ))
             } else if a.distance(arc.start()) == 0.0 && b.distance(arc.end()) == 0.0 {
                 *seg

@@ -234,13 +234,13 @@ fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine) -> Vec<Curve> {
         }
         match Arc::from_bulge(a, b, bulge) {
             Some(arc) => {
-                let r = arc.radius;
+                let r = arc.radius();
                 let ea = EllipseArc {
-                    center: arc.center,
+                    center: arc.center(),
                     u: Vector::new(r, 0.0),
                     v: Vector::new(0.0, r),
-                    t0: arc.start_angle,
-                    sweep: arc.sweep,
+                    t0: arc.start_angle(),
+                    sweep: arc.sweep(),
                 };
                 out.push(Curve::Ellipse(ea.transformed(m)));
             }

@@ -6,7 +6,7 @@
 //! removed (and reported); any other self-crossing is refused with its coordinates.
 
 use crate::geom::{
-    distance_from_segment, intersect, Aabb, BoxIndex, Contour, Intersection, Line, Point, Segment, Tolerance,
+    box_pairs, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point, Segment, Tolerance,
 };
 
 /// A loop cut off by a self-crossing is a sliver when its extent is at most this many join
@@ -89,11 +89,10 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
         return;
     }
     let boxes: Vec<Aabb> = segs.iter().map(|s| s.bbox().inflated(tol.eps)).collect();
-    let index = BoxIndex::new(&boxes);
     // Neighbours turning back tangentially at their joint meet again to within rounding up to
     // about sqrt(2 r eps) from it: hits that near, on curves that do not part, are the joint.
     let joint_radius = tol.join.max(tol.crossing());
-    for (i, j) in index.pairs() {
+    for (i, j) in box_pairs(&boxes) {
         for h in intersect(&segs[i], &segs[j], tol.eps).iter() {
             let at_joint = match h {
                 // The contour runs back over itself.

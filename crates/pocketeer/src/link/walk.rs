@@ -71,7 +71,7 @@ pub fn follow(path: &mut Toolpath, segments: &[Segment], z: f64) {
 pub fn emit(path: &mut Toolpath, s: &Segment, z: f64, feed: Feed) {
     match s {
         Segment::Line(l) => path.line(Point3::at(l.end, z), feed),
-        Segment::Arc(a) => path.arc_to(Point3::at(a.end(), z), a.center, a.sweep, feed),
+        Segment::Arc(a) => path.arc_to(Point3::at(a.end(), z), a.center(), a.sweep(), feed),
     }
 }
 

@@ -326,7 +326,7 @@ fn right_turn(a: &Segment, b: &Segment, d: f64) -> bool {
 fn curvature(s: &Segment) -> f64 {
     match s {
         Segment::Line(_) => 0.0,
-        Segment::Arc(a) => a.sweep.signum() / a.radius,
+        Segment::Arc(a) => a.sweep().signum() / a.radius(),
     }
 }
 
@@ -346,18 +346,27 @@ fn offset_segment(s: &Segment, d: f64, tol: &Tolerance) -> Option<Segment> {
         }
         Segment::Arc(a) => {
             // Left of a counter-clockwise arc is towards its centre.
-            let r = if a.sweep > 0.0 { a.radius - d } else { a.radius + d };
+            let r = if a.sweep() > 0.0 {
+                a.radius() - d
+            } else {
+                a.radius() + d
+            };
             if r.abs() <= tol.rounding() {
                 // Offset onto its centre: a point, kept (as a line of no length) so that the
                 // joints on either side still get their node arcs through it; split contracts
                 // it into one node.
-                return Some(Segment::Line(Line::new(a.center, a.center)));
+                return Some(Segment::Line(Line::new(a.center(), a.center())));
             }
             if r > 0.0 {
-                Some(Segment::Arc(Arc::new(a.center, r, a.start_angle, a.sweep)))
+                Some(Segment::Arc(Arc::new(a.center(), r, a.start_angle(), a.sweep())))
             } else {
                 // Offset past its centre: the paper's arc of radius |r - d| turned by 180°.
-                Some(Segment::Arc(Arc::new(a.center, -r, a.start_angle + PI, a.sweep)))
+                Some(Segment::Arc(Arc::new(
+                    a.center(),
+                    -r,
+                    a.start_angle() + PI,
+                    a.sweep(),
+                )))
             }
         }
     }

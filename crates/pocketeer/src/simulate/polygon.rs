@@ -15,8 +15,8 @@ pub fn flatten(segments: &[Segment], chord: f64) -> Vec<[f64; 2]> {
         out.push([p.x, p.y]);
         if let Segment::Arc(a) = s {
             // Sagitta r(1 − cos(θ/2)) ≤ chord.
-            let step = 2.0 * (1.0 - (chord / a.radius).min(1.0)).acos();
-            let n = ((a.sweep.abs() / step.max(1e-6)).ceil() as usize).clamp(1, 1 << 16);
+            let step = 2.0 * (1.0 - (chord / a.radius()).min(1.0)).acos();
+            let n = ((a.sweep().abs() / step.max(1e-6)).ceil() as usize).clamp(1, 1 << 16);
             for k in 1..n {
                 let q = a.point_at(k as f64 / n as f64);
                 out.push([q.x, q.y]);

@@ -17,10 +17,10 @@ pub fn mirror_segment(s: &Segment) -> Segment {
             Point::new(-l.end.x, l.end.y),
         )),
         Segment::Arc(a) => Segment::Arc(Arc::new(
-            Point::new(-a.center.x, a.center.y),
-            a.radius,
-            std::f64::consts::PI - a.start_angle,
-            -a.sweep,
+            Point::new(-a.center().x, a.center().y),
+            a.radius(),
+            std::f64::consts::PI - a.start_angle(),
+            -a.sweep(),
         )),
     }
 }

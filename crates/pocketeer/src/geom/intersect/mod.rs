@@ -225,7 +225,9 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
     let len = l.length();
     if len <= eps {
         let p = l.start.midpoint(l.end);
-        if (p.distance(c.center) - c.radius).abs() <= eps && c.contains_angle((p - c.center).angle(), eps) {
+        if (p.distance(c.center()) - c.radius()).abs() <= eps
+            && c.contains_angle((p - c.center()).angle(), eps)
+        {
             out.push(Intersection::Point {
                 point: p,
                 ta: 0.0,
@@ -234,9 +236,9 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
         }
         return out;
     }
-    let s = l.param_of(c.center);
-    let h = l.signed_distance(c.center);
-    let r = c.radius;
+    let s = l.param_of(c.center());
+    let h = l.signed_distance(c.center());
+    let r = c.radius();
     if h.abs() > r + eps {
         return out;
     }
@@ -259,12 +261,12 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
             }
             let t = clamp01(t);
             let p = l.point_at(t);
-            let angle = (p - c.center).angle();
+            let angle = (p - c.center()).angle();
             if !c.contains_angle(angle, eps) {
                 continue;
             }
             // Clamping to the line's end moves the point by at most eps along the line.
-            if (p.distance(c.center) - r).abs() <= 2.0 * eps {
+            if (p.distance(c.center()) - r).abs() <= 2.0 * eps {
                 out.push(Intersection::Point {
                     point: p,
                     ta: t,
@@ -285,13 +287,13 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
 fn refine_on_line(l: &Line, c: &Arc, mut t: f64) -> f64 {
     let d = l.delta();
     for _ in 0..3 {
-        let v = l.point_at(t) - c.center;
+        let v = l.point_at(t) - c.center();
         let dist = v.length();
         let slope = v.dot(d) / dist;
         if slope.is_nan() || slope.abs() <= 1e-3 * d.length() {
             break;
         }
-        t -= (dist - c.radius) / slope;
+        t -= (dist - c.radius()) / slope;
     }
     t
 }
@@ -299,14 +301,14 @@ fn refine_on_line(l: &Line, c: &Arc, mut t: f64) -> f64 {
 /// Newton steps on p for |p - c1| = r1 and |p - c2| = r2 (see [`refine_on_line`]).
 fn refine_on_circles(c1: &Arc, c2: &Arc, mut p: Point) -> Point {
     for _ in 0..3 {
-        let (v1, v2) = (p - c1.center, p - c2.center);
+        let (v1, v2) = (p - c1.center(), p - c2.center());
         let (l1, l2) = (v1.length(), v2.length());
         let (g1, g2) = (v1 / l1, v2 / l2);
         let det = g1.cross(g2);
         if det.is_nan() || det.abs() <= 1e-3 {
             break;
         }
-        let (f1, f2) = (l1 - c1.radius, l2 - c2.radius);
+        let (f1, f2) = (l1 - c1.radius(), l2 - c2.radius());
         // Solve [g1; g2] δ = -(f1, f2).
         let dx = (-f1 * g2.y + f2 * g1.y) / det;
         let dy = (-g1.x * f2 + g2.x * f1) / det;
@@ -318,9 +320,9 @@ fn refine_on_circles(c1: &Arc, c2: &Arc, mut p: Point) -> Point {
 /// Intersections of two arcs.
 pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     let mut out = Intersections::default();
-    let v = c2.center - c1.center;
+    let v = c2.center() - c1.center();
     let d = v.length();
-    let (r1, r2) = (c1.radius, c2.radius);
+    let (r1, r2) = (c1.radius(), c2.radius());
     if d <= eps && (r1 - r2).abs() <= eps {
         return cocircular(c1, c2, eps);
     }
@@ -332,9 +334,9 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     // height h above the line of centres loses precision as r / h when they meet at a
     // shallow angle. Written to avoid cancellation between large squared radii.
     let (c, r, ro, w) = if r1 <= r2 {
-        (c1.center, r1, r2, u)
+        (c1.center(), r1, r2, u)
     } else {
-        (c2.center, r2, r1, -u)
+        (c2.center(), r2, r1, -u)
     };
     let a = 0.5 * (d + (r - ro) * (r + ro) / d);
     let h = ((r - a) * (r + a)).max(0.0).sqrt();
@@ -344,9 +346,9 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     // either arc, the two crossings the exact geometry may still have are tried instead (see
     // `line_arc`).
     let tangent = [if (d - (r1 + r2)).abs() <= eps || r1 >= r2 {
-        c1.center + u * r1
+        c1.center() + u * r1
     } else {
-        c1.center - u * r1
+        c1.center() - u * r1
     }];
     let groups: [&[Point]; 2] = if (d - (r1 + r2)).abs() <= eps || (d - (r1 - r2).abs()).abs() <= eps {
         [&tangent, &crossings]
@@ -356,8 +358,8 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     for group in groups {
         for &p in group {
             let p = refine_on_circles(c1, c2, p);
-            let a1 = (p - c1.center).angle();
-            let a2 = (p - c2.center).angle();
+            let a1 = (p - c1.center()).angle();
+            let a2 = (p - c2.center()).angle();
             if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {
                 out.push(Intersection::Point {
                     point: p,
@@ -384,7 +386,7 @@ fn end_on_other(a: &Segment, b: &Segment, eps: f64) -> Intersections {
     let near = |s: &Segment, p: Point| {
         let off = match s {
             Segment::Line(l) => l.signed_distance(p).abs(),
-            Segment::Arc(c) => (p.distance(c.center) - c.radius).abs(),
+            Segment::Arc(c) => (p.distance(c.center()) - c.radius()).abs(),
         };
         off <= eps && distance_from_segment(s, p) <= eps
     };
@@ -407,11 +409,11 @@ fn end_on_other(a: &Segment, b: &Segment, eps: f64) -> Intersections {
 
 /// The counter-clockwise angle interval `[lo, lo + len]` an arc covers.
 fn ccw_interval(c: &Arc) -> (f64, f64) {
-    let len = c.sweep.abs().min(TAU);
-    let lo = if c.sweep >= 0.0 {
-        c.start_angle
+    let len = c.sweep().abs().min(TAU);
+    let lo = if c.sweep() >= 0.0 {
+        c.start_angle()
     } else {
-        c.start_angle + c.sweep
+        c.start_angle() + c.sweep()
     };
     (lo, len)
 }
@@ -420,12 +422,12 @@ fn ccw_interval(c: &Arc) -> (f64, f64) {
 /// `[lo, lo + len]`.
 fn param_in_frame(c: &Arc, lo: f64, len: f64, theta: f64) -> f64 {
     let f = if len > 0.0 { (theta - lo) / len } else { 0.0 };
-    clamp01(if c.sweep >= 0.0 { f } else { 1.0 - f })
+    clamp01(if c.sweep() >= 0.0 { f } else { 1.0 - f })
 }
 
 fn cocircular(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     let mut out = Intersections::default();
-    let r = 0.5 * (c1.radius + c2.radius);
+    let r = 0.5 * (c1.radius() + c2.radius());
     let ang_eps = eps / r;
     let (lo1, len1) = ccw_interval(c1);
     let (lo2, len2) = ccw_interval(c2);
