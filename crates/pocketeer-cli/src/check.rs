@@ -162,6 +162,31 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
             );
         }
     }
+    let e = &r.engagement;
+    match &e.max_at {
+        Some(at) => {
+            let _ = writeln!(
+                s,
+                "tool engagement           max {:.0}° at line {} (X{:.3} Y{:.3}), 95 % of the {:.1} mm cut at one height at or below {:.0}°, {:.1} % above 90°, {:.1} % above 150° (entries not counted; sampled every {}° round the tool, {:.3} mm along)",
+                e.max_deg,
+                at.line,
+                at.x,
+                at.y,
+                e.length,
+                e.p95_deg,
+                e.above_90_percent,
+                e.above_150_percent,
+                e.angle_step_deg,
+                e.spacing
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "tool engagement           none: no cutting move below Z0 at one height"
+            );
+        }
+    }
     let _ = writeln!(
         s,
         "cutting {:.1} mm, rapid {:.1} mm, {}, {} s of dwell, about {} (rapids at {} mm/min)",

@@ -397,3 +397,60 @@ fn check_passes_our_program_and_fails_a_lazy_one() {
     assert_eq!(res.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&res.stderr).contains("bad.nc: line 2:"));
 }
+
+#[test]
+fn check_json_carries_the_engagement_distribution() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("bracket.nc");
+    let res = run(&[
+        "pocket",
+        "examples/bracket.dxf",
+        "--tool-diameter",
+        "6",
+        "--stepover",
+        "40%",
+        "--depth",
+        "3",
+        "--tool-number",
+        "1",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    assert!(res.status.success());
+    let out = run(&[
+        "check",
+        "--json",
+        "examples/bracket.dxf",
+        nc.to_str().unwrap(),
+        "--tool-diameter",
+        "6",
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let e = &v["engagement"];
+    let bands: Vec<f64> = e["histogram"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b.as_f64().unwrap())
+        .collect();
+    assert_eq!(bands.len(), 36);
+    // The bands share out the cutting length measured.
+    let length = e["length"].as_f64().unwrap();
+    assert!((bands.iter().sum::<f64>() - length).abs() < 1e-6 * length, "{e}");
+    let (max, p95) = (e["max_deg"].as_f64().unwrap(), e["p95_deg"].as_f64().unwrap());
+    assert!(0.0 < p95 && p95 <= max && max <= 360.0, "{e}");
+    assert!(e["max_at"]["line"].as_u64().unwrap() > 0);
+    let text = String::from_utf8(
+        run(&[
+            "check",
+            "examples/bracket.dxf",
+            nc.to_str().unwrap(),
+            "--tool-diameter",
+            "6",
+        ])
+        .stdout,
+    )
+    .unwrap();
+    assert!(text.contains("tool engagement           max "), "{text}");
+}

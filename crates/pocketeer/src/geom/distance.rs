@@ -43,14 +43,8 @@ pub fn closest_point(seg: &Segment, p: Point) -> Point {
 pub fn distance_from_segment(seg: &Segment, p: Point) -> f64 {
     match seg {
         Segment::Line(l) => line_point_distance(l, p),
-        Segment::Arc(a) => {
-            let v = p - a.center();
-            if v.length_sq() > 0.0 && a.contains_angle(v.angle(), 0.0) {
-                (v.length() - a.radius()).abs()
-            } else {
-                closest_point(seg, p).distance(p)
-            }
-        }
+        // The arc's ends are known: sign tests instead of an angle.
+        Segment::Arc(a) => arc_point_distance_with_ends(a, a.start(), a.end(), p),
     }
 }
 

@@ -113,6 +113,8 @@ pub struct CheckReport {
     pub gouge: f64,
     /// Thickest leftover over all pockets, mm.
     pub thickest: f64,
+    /// How much of the tool's circumference met the stock along the cutting moves.
+    pub engagement: super::engagement::Engagement,
     /// True when gouge and leftover are within the tolerances and no rapid goes into the stock.
     pub passed: bool,
     /// The area swept at the final depth, for drawing.
@@ -163,6 +165,7 @@ pub fn check_program(
             report.plunges.push(place(m.to.xy()));
         }
     }
+    report.engagement = super::engagement::engagement(moves, &history, r);
     report.swept = swept(moves, final_depth, r);
     report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
     for (i, p) in pockets.iter().enumerate() {
@@ -195,6 +198,7 @@ impl CheckReport {
             wall_sides: super::side::Sides::default(),
             gouge: 0.0,
             thickest: 0.0,
+            engagement: super::engagement::Engagement::default(),
             passed: true,
             swept: Vec::new(),
         }

@@ -7,12 +7,14 @@
 //! the moves found there exactly.
 
 use super::gcode::{Motion, ProgramMove};
-use crate::geom::{closest_param, distance_from_segment, Point, Vector};
+use crate::geom::{closest_param, distance_from_segment, Point, Segment, Vector};
 use std::collections::HashMap;
 
 /// The feed moves of a program below the stock top, indexed by place.
 pub struct CutHistory<'a> {
     moves: &'a [ProgramMove],
+    /// Each move's footprint in XY, made once (an arc's takes trigonometry).
+    footprints: Vec<Segment>,
     cell: f64,
     cells: HashMap<(i64, i64), Vec<u32>>,
 }
@@ -26,11 +28,12 @@ impl<'a> CutHistory<'a> {
     pub fn new(moves: &'a [ProgramMove], r: f64) -> CutHistory<'a> {
         let cell = r.max(1e-3);
         let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
+        let footprints: Vec<Segment> = moves.iter().map(ProgramMove::footprint).collect();
         for (k, m) in moves.iter().enumerate() {
             if m.motion == Motion::Rapid || m.from.z.min(m.to.z) >= 0.0 {
                 continue;
             }
-            let f = m.footprint();
+            let f = footprints[k];
             let n = ((f.length() / (0.5 * cell)).ceil() as usize).clamp(1, 1 << 20);
             let mut last = None;
             for j in 0..=n {
@@ -44,7 +47,52 @@ impl<'a> CutHistory<'a> {
                 }
             }
         }
-        CutHistory { moves, cell, cells }
+        CutHistory {
+            moves,
+            footprints,
+            cell,
+            cells,
+        }
+    }
+
+    /// The footprint of move `k` in XY.
+    pub fn footprint(&self, k: usize) -> &Segment {
+        &self.footprints[k]
+    }
+
+    /// The feed moves below Z=0 before move `before` that may pass within `reach` of `p`
+    /// (every one that does, and some that do not), each once, in program order.
+    pub fn near(&self, before: usize, p: Point, reach: f64) -> Vec<usize> {
+        let mut out = Vec::new();
+        self.visit_near(before, p, reach, |k| {
+            out.push(k);
+            false
+        });
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Calls `f` on the moves of [`CutHistory::near`] (some more than once) until it returns
+    /// true; true when it did.
+    fn visit_near(&self, before: usize, p: Point, reach: f64, mut f: impl FnMut(usize) -> bool) -> bool {
+        let (cx, cy) = key(p, self.cell);
+        // Samples lie half a cell apart: a move within `reach` of p has one within reach plus
+        // a quarter cell.
+        let cells = ((reach + 0.25 * self.cell) / self.cell).ceil() as i64 + 1;
+        for dx in -cells..=cells {
+            for dy in -cells..=cells {
+                let Some(list) = self.cells.get(&(cx + dx, cy + dy)) else {
+                    continue;
+                };
+                for &k in list.iter().take_while(|&&k| (k as usize) < before) {
+                    if f(k as usize) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
     }
 
     /// True when, before move `before`, the tool of radius `r` had cut the whole disc of
@@ -63,26 +111,22 @@ impl<'a> CutHistory<'a> {
 
     /// True when a feed move before `before` passed within `r` of `q` at `z` or below.
     fn cut_at(&self, before: usize, q: Point, z: f64, r: f64) -> bool {
-        let (cx, cy) = key(q, self.cell);
-        // Samples lie half a cell apart: a move within r of q has one within 1.25 cells.
-        let reach = ((r + 0.25 * self.cell) / self.cell).ceil() as i64 + 1;
-        for dx in -reach..=reach {
-            for dy in -reach..=reach {
-                let Some(list) = self.cells.get(&(cx + dx, cy + dy)) else {
-                    continue;
-                };
-                for &k in list.iter().take_while(|&&k| (k as usize) < before) {
-                    let m = &self.moves[k as usize];
-                    let f = m.footprint();
-                    if distance_from_segment(&f, q) <= r + SLACK
-                        && m.point_at(closest_param(&f, q)).z <= z + 1e-4
-                    {
-                        return true;
-                    }
-                }
-            }
+        self.visit_near(before, q, r, |k| self.passed(k, q, z, r + SLACK))
+    }
+
+    /// True when move `k` passed within `r` of `q` at `z` or below.
+    pub fn passed(&self, k: usize, q: Point, z: f64, r: f64) -> bool {
+        let (f, m) = (&self.footprints[k], &self.moves[k]);
+        if distance_from_segment(f, q) > r {
+            return false;
         }
-        false
+        // A move straight down cut its disc at the bottom.
+        let there = if f.length() <= 1e-9 {
+            m.from.z.min(m.to.z)
+        } else {
+            m.point_at(closest_param(f, q)).z
+        };
+        there <= z + 1e-4
     }
 }
 

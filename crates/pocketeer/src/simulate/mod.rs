@@ -6,14 +6,17 @@
 //! deepest gouge into a wall or island, the thickest material left where the tool could
 //! reach, rapids into stock, plunges, and the wall-following length by milling side.
 //! `gcode.rs` reads, `polygon.rs` sweeps the tool, `history.rs` remembers what each move
-//! found cut, `side.rs` measures climb against conventional.
+//! found cut, `side.rs` measures climb against conventional, `engagement.rs` how much of the
+//! tool meets the stock.
 
 pub mod check;
+pub mod engagement;
 pub mod gcode;
 mod history;
 mod polygon;
 mod side;
 
 pub use check::{check_program, CheckParams, CheckReport, PocketCheck};
+pub use engagement::Engagement;
 pub use gcode::{read_program, GcodeError, Program};
 pub use side::{Sides, WALL_SLACK};

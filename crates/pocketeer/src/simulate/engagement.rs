@@ -1,0 +1,273 @@
+//! The tool's engagement along a program: at each point of a cutting move, the arc of the
+//! tool's circumference that meets stock not yet removed.
+//!
+//! The stock at a height z is everything except what a feed move before (or the part of the
+//! same move already done) swept at z or below: the tool's disc along it. A point of the
+//! circumference is in contact when no earlier position of the tool at that height or deeper
+//! covered it. Samples are taken every [`ANGLE_STEP_DEG`] round the tool (the engaged arc is
+//! then within one step of the exact one: each end of it within half a step) and at most
+//! [`SPACING_PER_RADIUS`] of the radius apart along each cutting move, so a peak shorter than
+//! that along the path may be missed.
+//!
+//! Only moves at one height below Z=0 count (the cutting length): helices, ramps and plunges
+//! are entries, and their engagement is not a question of stepover or linking. Links through
+//! cleared stock count, with their engagement of 0°.
+
+use super::check::Place;
+use super::gcode::{Motion, ProgramMove};
+use super::history::CutHistory;
+use crate::geom::{distance_from_segment, Segment, Vector};
+use serde::Serialize;
+
+/// Angle between samples round the tool, degrees.
+pub const ANGLE_STEP_DEG: f64 = 1.0;
+
+/// Largest distance between samples along a move, as a share of the tool radius.
+pub const SPACING_PER_RADIUS: f64 = 0.125;
+
+/// Most samples along the program: past this the spacing widens (and the report says so), so
+/// that a check of a huge program stays a matter of seconds.
+pub const MAX_SAMPLES: usize = 400_000;
+
+/// Width of the bands of [`Engagement::histogram`], degrees.
+pub const BAND_DEG: f64 = 10.0;
+
+/// How the tool met the stock along a program's cutting moves.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Engagement {
+    /// Angle between samples round the tool, degrees.
+    pub angle_step_deg: f64,
+    /// Largest distance between samples along a move, mm.
+    pub spacing: f64,
+    /// Length of the cutting moves measured (one height, below Z=0), mm.
+    pub length: f64,
+    /// Largest engagement, degrees.
+    pub max_deg: f64,
+    /// Where it is.
+    pub max_at: Option<Place>,
+    /// The engagement that 95 % of the cutting length stays at or below, degrees.
+    pub p95_deg: f64,
+    /// Share of the cutting length with more than 90°, percent.
+    pub above_90_percent: f64,
+    /// Share of the cutting length with more than 150°, percent.
+    pub above_150_percent: f64,
+    /// Cutting length in each band of [`BAND_DEG`] degrees, from 0°: the last band holds 360°.
+    pub histogram: Vec<f64>,
+}
+
+/// The engagement along `moves` for a tool of radius `r` (see the module's documentation).
+pub fn engagement(moves: &[ProgramMove], history: &CutHistory, r: f64) -> Engagement {
+    let cutting: Vec<usize> = (0..moves.len()).filter(|&k| is_cutting(&moves[k])).collect();
+    let length: f64 = cutting.iter().map(|&k| moves[k].length()).sum();
+    let mut spacing = SPACING_PER_RADIUS * r;
+    if length / spacing > MAX_SAMPLES as f64 {
+        spacing = length / MAX_SAMPLES as f64;
+    }
+    // (engagement in degrees, length it stands for)
+    let mut samples: Vec<(f64, f64)> = Vec::new();
+    let mut max: (f64, Option<Place>) = (0.0, None);
+    for &k in &cutting {
+        let m = &moves[k];
+        let len = m.length();
+        let n = ((len / spacing).ceil() as usize).max(2);
+        for j in 1..=n {
+            let t = j as f64 / n as f64;
+            let deg = engagement_at(moves, history, k, t, r);
+            samples.push((deg, len / n as f64));
+            if deg > max.0 || max.1.is_none() {
+                let c = m.point_at(t);
+                max = (
+                    deg,
+                    Some(Place {
+                        x: c.x,
+                        y: c.y,
+                        line: m.line,
+                    }),
+                );
+            }
+        }
+    }
+    summarize(samples, length, spacing, max)
+}
+
+/// A feed move at one height below the stock top.
+fn is_cutting(m: &ProgramMove) -> bool {
+    m.motion != Motion::Rapid
+        && m.from.z < 0.0
+        && (m.to.z - m.from.z).abs() <= 1e-9
+        && m.from.xy().distance(m.to.xy()) > 0.0
+}
+
+/// The engagement, degrees, of the tool at parameter `t` of move `k`.
+pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f64, r: f64) -> f64 {
+    let m = &moves[k];
+    let c = m.point_at(t);
+    let z = c.z;
+    let here = c.xy();
+    // What may have cut round the tool: earlier moves within 2r of its centre at this height
+    // or deeper, and this move up to here.
+    let earlier: Vec<usize> = history
+        .near(k, here, 2.0 * r)
+        .into_iter()
+        .filter(|&j| {
+            let e = &moves[j];
+            e.from.z.min(e.to.z) <= z + 1e-4 && distance_from_segment(history.footprint(j), here) < 2.0 * r
+        })
+        .collect();
+    // Moves at one height (nearly all) cut wherever they passed; a helix or a ramp only where
+    // it was deep enough.
+    let level = |j: usize| (moves[j].from.z - moves[j].to.z).abs() <= 1e-9;
+    let mut flat: Vec<Segment> = earlier
+        .iter()
+        .filter(|&&j| level(j))
+        .map(|&j| *history.footprint(j))
+        .collect();
+    let sloped: Vec<usize> = earlier.into_iter().filter(|&j| !level(j)).collect();
+    if t > 0.0 {
+        flat.push(history.footprint(k).subsegment(0.0, t));
+    }
+    // A point exactly on an earlier disc's edge is cut: the tool's own circumference at the
+    // start of a slot touches only its centre's path behind it.
+    let covered = r * (1.0 - 1e-9);
+    let engaged = round_the_tool()
+        .iter()
+        .filter(|&&u| {
+            let q = here + u * r;
+            !flat.iter().any(|s| distance_from_segment(s, q) < covered)
+                && !sloped.iter().any(|&j| history.passed(j, q, z, covered))
+        })
+        .count();
+    engaged as f64 * ANGLE_STEP_DEG
+}
+
+/// The unit directions sampled round the tool, made once.
+fn round_the_tool() -> &'static [Vector] {
+    static DIRECTIONS: std::sync::OnceLock<Vec<Vector>> = std::sync::OnceLock::new();
+    DIRECTIONS.get_or_init(|| {
+        let steps = (360.0 / ANGLE_STEP_DEG).round() as usize;
+        let step = std::f64::consts::TAU / steps as f64;
+        (0..steps)
+            .map(|i| Vector::from_angle((i as f64 + 0.5) * step))
+            .collect()
+    })
+}
+
+/// The figures of [`Engagement`] from the samples (degrees, length).
+fn summarize(
+    mut samples: Vec<(f64, f64)>,
+    length: f64,
+    spacing: f64,
+    max: (f64, Option<Place>),
+) -> Engagement {
+    let bands = (360.0 / BAND_DEG).round() as usize;
+    let mut histogram = vec![0.0; bands];
+    let (mut above_90, mut above_150) = (0.0, 0.0);
+    for &(deg, len) in &samples {
+        histogram[((deg / BAND_DEG) as usize).min(bands - 1)] += len;
+        if deg > 90.0 {
+            above_90 += len;
+        }
+        if deg > 150.0 {
+            above_150 += len;
+        }
+    }
+    samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = samples.iter().map(|s| s.1).sum();
+    let mut acc = 0.0;
+    let p95 = samples
+        .iter()
+        .find(|s| {
+            acc += s.1;
+            acc >= 0.95 * total
+        })
+        .map_or(0.0, |s| s.0);
+    let percent = |x: f64| if total > 0.0 { 100.0 * x / total } else { 0.0 };
+    Engagement {
+        angle_step_deg: ANGLE_STEP_DEG,
+        spacing,
+        length,
+        max_deg: max.0,
+        max_at: max.1,
+        p95_deg: p95,
+        above_90_percent: percent(above_90),
+        above_150_percent: percent(above_150),
+        histogram,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::toolpath::Point3;
+
+    fn feed(line: usize, from: (f64, f64, f64), to: (f64, f64, f64)) -> ProgramMove {
+        ProgramMove {
+            line,
+            motion: Motion::Line,
+            from: Point3::new(from.0, from.1, from.2),
+            to: Point3::new(to.0, to.1, to.2),
+            feed: Some(1000.0),
+        }
+    }
+
+    #[test]
+    fn a_straight_slot_engages_half_the_tool() {
+        let r = 3.0;
+        let moves = vec![
+            feed(1, (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)),
+            feed(2, (0.0, 0.0, -1.0), (50.0, 0.0, -1.0)),
+        ];
+        let history = CutHistory::new(&moves, r);
+        let e = engagement(&moves, &history, r);
+        assert!((e.length - 50.0).abs() < 1e-9);
+        assert!((e.max_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{}", e.max_deg);
+        assert!((e.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{}", e.p95_deg);
+        assert!(e.above_150_percent > 99.0);
+        for t in [0.1, 0.5, 0.9] {
+            let deg = engagement_at(&moves, &history, 1, t, r);
+            assert!((deg - 180.0).abs() <= ANGLE_STEP_DEG, "{deg} at {t}");
+        }
+    }
+
+    #[test]
+    fn a_side_cut_engages_the_closed_form_angle() {
+        // A slot along y = 0, then back along y = a: radial width a, engagement
+        // arccos(1 − a/r), for widths from a sliver to just under the radius.
+        let r = 3.0;
+        for a in [0.3, 1.2, 2.4, 2.9] {
+            let moves = vec![
+                feed(1, (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)),
+                feed(2, (0.0, 0.0, -1.0), (60.0, 0.0, -1.0)),
+                feed(3, (60.0, 0.0, -1.0), (60.0, a, -1.0)),
+                feed(4, (60.0, a, -1.0), (0.0, a, -1.0)),
+            ];
+            let history = CutHistory::new(&moves, r);
+            let exact = (1.0 - a / r).acos().to_degrees();
+            for t in [0.2, 0.5, 0.8] {
+                let deg = engagement_at(&moves, &history, 3, t, r);
+                assert!(
+                    (deg - exact).abs() <= ANGLE_STEP_DEG,
+                    "a = {a}: {deg} against {exact}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_pass_at_a_new_depth_meets_stock_again_and_a_link_through_cleared_stock_none() {
+        let r = 2.0;
+        let moves = vec![
+            feed(1, (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)),
+            feed(2, (0.0, 0.0, -1.0), (30.0, 0.0, -1.0)),
+            // Back along the slot at the same depth: nothing left to meet.
+            feed(3, (30.0, 0.0, -1.0), (0.0, 0.0, -1.0)),
+            feed(4, (0.0, 0.0, -1.0), (0.0, 0.0, -2.0)),
+            // The same slot one step deeper: a slot again.
+            feed(5, (0.0, 0.0, -2.0), (30.0, 0.0, -2.0)),
+        ];
+        let history = CutHistory::new(&moves, r);
+        assert_eq!(engagement_at(&moves, &history, 2, 0.5, r), 0.0);
+        let deg = engagement_at(&moves, &history, 4, 0.5, r);
+        assert!((deg - 180.0).abs() <= ANGLE_STEP_DEG, "{deg}");
+    }
+}
