@@ -23,6 +23,9 @@ pub struct CheckArgs {
     /// Rapid speed of the machine for the time estimate, per minute.
     #[arg(long, default_value_t = pocketeer::simulate::check::RAPID_RATE, value_parser = parse_rate, allow_hyphen_values = true)]
     rapid_rate: f64,
+    /// Seconds each retract costs beyond its length at the rapid rate, for the time estimate.
+    #[arg(long, default_value_t = pocketeer::machining_time::DEFAULT_RETRACT_SECONDS, allow_hyphen_values = true)]
+    retract_time: f64,
     /// Largest gouge accepted.
     #[arg(long, default_value_t = pocketeer::simulate::check::GOUGE_TOLERANCE, value_parser = parse_nonneg_length, allow_hyphen_values = true)]
     gouge_tolerance: f64,
@@ -61,6 +64,12 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
             args.rapid_rate
         )));
     }
+    if !(args.retract_time.is_finite() && args.retract_time >= 0.0) {
+        return Err(Failure(format!(
+            "--retract-time {}: a retract costs zero seconds or more",
+            args.retract_time
+        )));
+    }
     if let Some(svg) = &args.svg {
         output::guard(&[&args.drawing.file, &args.program], &[("--svg", svg)]).map_err(Failure)?;
     }
@@ -75,6 +84,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         gouge_tolerance: args.gouge_tolerance,
         leftover_tolerance: args.leftover_tolerance,
         rapid_rate: args.rapid_rate,
+        per_retract: args.retract_time,
     };
     let report = check_program(&analysis.nesting.pockets, &program, &params, &analysis.tolerance)
         .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
@@ -189,13 +199,14 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
     }
     let _ = writeln!(
         s,
-        "cutting {:.1} mm, rapid {:.1} mm, {}, {} s of dwell, about {} (rapids at {} mm/min)",
+        "cutting {:.1} mm, rapid {:.1} mm, {}, {} s of dwell, about {} (rapids at {} mm/min, {} s a retract)",
         r.cut_length,
         r.rapid_length,
         crate::display::count(r.retracts, "retract", "retracts"),
         crate::display::num(r.dwell, 3),
         crate::display::time(r.seconds),
-        crate::display::num(params.rapid_rate, 3)
+        crate::display::num(params.rapid_rate, 3),
+        crate::display::num(params.per_retract, 3)
     );
     let _ = writeln!(
         s,

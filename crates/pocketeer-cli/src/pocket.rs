@@ -86,6 +86,10 @@ pub struct PocketArgs {
     /// 200 in/min for an inch drawing].
     #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
     rapid_rate: Option<f64>,
+    /// Seconds each retract costs beyond its length at the rapid rate (accelerating, settling,
+    /// coming down again), for the time estimate and the linking's choices.
+    #[arg(long, default_value_t = pocketeer::machining_time::DEFAULT_RETRACT_SECONDS, allow_hyphen_values = true)]
+    retract_time: f64,
     /// The G-code file to write (written only when everything succeeded); `-` writes to
     /// standard output.
     #[arg(short, long)]
@@ -239,6 +243,12 @@ impl Settings {
             args.spindle,
             "the spindle speed must be positive (rpm)",
         )?;
+        if !(args.retract_time.is_finite() && args.retract_time >= 0.0) {
+            return Err(Failure(format!(
+                "--retract-time {}: a retract costs zero seconds or more",
+                num(args.retract_time, 3)
+            )));
+        }
         if !(args.spindle_wait.is_finite() && args.spindle_wait >= 0.0) {
             return Err(Failure(format!(
                 "--spindle-wait {}: a wait is zero seconds or more",
@@ -365,7 +375,12 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
             e => Failure(format!("{name}: {e}")),
         })?;
     // The figures do not depend on the header: estimate them first, then write the header.
-    let figures = estimate(&job.linked.toolpath, &s.program(args, Vec::new()), s.rapid_rate);
+    let figures = estimate(
+        &job.linked.toolpath,
+        &s.program(args, Vec::new()),
+        s.rapid_rate,
+        args.retract_time,
+    );
     let loops: usize = job.plans.iter().map(|p| p.loop_count()).sum();
     let passes = pocketeer::link::pass_depths(s.depth, s.step_down).len();
     let header = header(args, &s, &analysis, loops, passes, &figures);
@@ -493,6 +508,7 @@ fn self_check(
         gouge_tolerance: pocketeer::simulate::check::GOUGE_TOLERANCE,
         leftover_tolerance: pocketeer::simulate::check::LEFTOVER_TOLERANCE,
         rapid_rate: s.rapid_rate,
+        per_retract: args.retract_time,
     };
     let read = pocketeer::simulate::read_program(program)
         .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;

@@ -65,6 +65,7 @@ pub mod geom;
 pub mod import;
 pub mod job;
 pub mod link;
+pub mod machining_time;
 pub mod offset;
 mod parallel;
 pub mod post;

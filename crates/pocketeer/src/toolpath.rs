@@ -119,13 +119,6 @@ pub struct Stats {
     pub retracts: usize,
 }
 
-impl Stats {
-    /// Estimated machining time, seconds, at the given feeds (mm/min); rapids at `rapid`.
-    pub fn seconds(&self, feed: f64, plunge_feed: f64, rapid: f64) -> f64 {
-        60.0 * (self.cut_length / feed + self.plunge_length / plunge_feed + self.rapid_length / rapid)
-    }
-}
-
 impl Toolpath {
     /// An empty path starting at `start`.
     pub fn new(start: Point3) -> Toolpath {

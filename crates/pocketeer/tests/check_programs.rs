@@ -54,6 +54,7 @@ fn check(pocket: &Pocket, program: &str) -> CheckReport {
         gouge_tolerance: 0.01,
         leftover_tolerance: 0.05,
         rapid_rate: pocketeer::simulate::check::RAPID_RATE,
+        per_retract: pocketeer::machining_time::DEFAULT_RETRACT_SECONDS,
     };
     check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default()).unwrap()
 }
@@ -251,6 +252,7 @@ fn a_wall_pass_0_011_too_close_fails_and_0_005_passes_the_gouge_tolerance() {
         gouge_tolerance: 0.01,
         leftover_tolerance: 1e9,
         rapid_rate: pocketeer::simulate::check::RAPID_RATE,
+        per_retract: pocketeer::machining_time::DEFAULT_RETRACT_SECONDS,
     };
     let run = |inset: f64| {
         check_program(

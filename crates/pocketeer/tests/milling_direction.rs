@@ -228,6 +228,7 @@ fn every_case_passes_the_check_both_ways() {
                 gouge_tolerance: 0.01,
                 leftover_tolerance: 0.05,
                 rapid_rate: 5000.0,
+                per_retract: 0.0,
             };
             let r = check_program(
                 std::slice::from_ref(&c.pocket),

@@ -13,6 +13,7 @@ mod linuxcnc;
 mod mach3;
 
 use crate::geom::{Point, Vector};
+use crate::machining_time::TimeModel;
 use crate::toolpath::{half_turns, Feed, Move, Point3, Toolpath};
 use std::fmt::Write;
 
@@ -115,8 +116,9 @@ pub struct Estimate {
     pub seconds: f64,
 }
 
-/// The figures of the program [`write_gcode`] writes for `path` with `s`, rapids at
-/// `rapid_rate` mm/min.
+/// The figures of the program [`write_gcode`] writes for `path` with `s`, timed with its feeds,
+/// rapids at `rapid_rate` mm/min and `per_retract` seconds for each retract
+/// (see [`crate::machining_time`]).
 ///
 /// ```
 /// use pocketeer::post::{estimate, ProgramSettings};
@@ -126,13 +128,19 @@ pub struct Estimate {
 /// path.rapid(Point3::new(10.0, 0.0, 1.0));
 /// path.line(Point3::new(10.0, 0.0, -2.0), Feed::Plunge);
 /// path.line(Point3::new(40.0, 0.0, -2.0), Feed::Cut);
-/// let e = estimate(&path, &ProgramSettings::default(), 5000.0);
+/// let e = estimate(&path, &ProgramSettings::default(), 5000.0, 0.5);
 /// // 3 mm down at 300 mm/min, 30 mm at 1000; rapids 4 mm down and 7 mm up at the end.
 /// assert_eq!((e.feed_length, e.rapid_length, e.retracts), (33.0, 11.0, 1));
-/// // The spindle's 2 s dwell counts too.
-/// assert!((e.seconds - (0.6 + 1.8 + 11.0 * 60.0 / 5000.0 + 2.0)).abs() < 1e-9);
+/// // The spindle's 2 s dwell counts too, and half a second for the retract.
+/// assert!((e.seconds - (0.6 + 1.8 + 11.0 * 60.0 / 5000.0 + 2.0 + 0.5)).abs() < 1e-9);
 /// ```
-pub fn estimate(path: &Toolpath, s: &ProgramSettings, rapid_rate: f64) -> Estimate {
+pub fn estimate(path: &Toolpath, s: &ProgramSettings, rapid_rate: f64, per_retract: f64) -> Estimate {
+    let model = TimeModel {
+        feed: s.feed,
+        plunge_feed: s.plunge_feed,
+        rapid: rapid_rate,
+        per_retract,
+    };
     let stats = path.stats();
     let mut e = Estimate {
         feed_length: stats.cut_length + stats.plunge_length,
@@ -150,8 +158,12 @@ pub fn estimate(path: &Toolpath, s: &ProgramSettings, rapid_rate: f64) -> Estima
     if let Some(p) = s.park {
         e.rapid_length += end.xy().distance(p);
     }
-    e.seconds =
-        stats.seconds(s.feed, s.plunge_feed, f64::INFINITY) + 60.0 * e.rapid_length / rapid_rate + e.dwell;
+    let time = model.toolpath(path);
+    // The path's own rapids and retracts, then the ones the program adds at its end.
+    e.seconds = time.total()
+        + model.rapid_seconds(e.rapid_length - stats.rapid_length)
+        + per_retract * (e.retracts - stats.retracts) as f64
+        + e.dwell;
     e
 }
 

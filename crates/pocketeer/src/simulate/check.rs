@@ -42,6 +42,9 @@ pub struct CheckParams {
     pub leftover_tolerance: f64,
     /// Rapid speed for the time estimate, mm/min.
     pub rapid_rate: f64,
+    /// The fixed cost of each retract in the time estimate, seconds (see
+    /// [`crate::machining_time`]).
+    pub per_retract: f64,
 }
 
 /// A place in the program: where and on which line.
@@ -104,7 +107,8 @@ pub struct CheckReport {
     pub retracts: usize,
     /// Seconds of dwell (G4).
     pub dwell: f64,
-    /// Estimated time, seconds: feed moves at their feed, rapids at the rapid rate, dwells.
+    /// Estimated time, seconds: feed moves at their feed, rapids at the rapid rate, dwells, and
+    /// the fixed cost of each retract.
     pub seconds: f64,
     /// Length along the walls at the final depth by the side the material is on (right:
     /// climb milling with an M3 spindle).
@@ -144,7 +148,7 @@ pub fn check_program(
             line: m.line,
         };
         if m.motion == Motion::Rapid {
-            report.tally_rapid(m, params.rapid_rate);
+            report.tally_rapid(m, params.rapid_rate, params.per_retract);
             if !rapid_through_air(m, k, &history, r) {
                 report.rapids_into_stock.push(place(m.to.xy()));
             }
@@ -205,12 +209,13 @@ impl CheckReport {
     }
 
     /// Counts a rapid's length, time and whether it retracts.
-    fn tally_rapid(&mut self, m: &ProgramMove, rapid_rate: f64) {
+    fn tally_rapid(&mut self, m: &ProgramMove, rapid_rate: f64, per_retract: f64) {
         let len = m.length();
         self.rapid_length += len;
         self.seconds += 60.0 * len / rapid_rate;
         if m.to.z > m.from.z {
             self.retracts += 1;
+            self.seconds += per_retract;
         }
     }
 
