@@ -34,8 +34,9 @@ pub struct PocketArgs {
     /// for an inch drawing].
     #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
     feed: Option<f64>,
-    /// Feed per minute for moves that go down into the stock (helix, ramp, plunge) [default:
-    /// 300 mm/min; 12 in/min for an inch drawing].
+    /// Feed per minute straight down into the stock; helices and ramps go at the cutting feed,
+    /// slowed where they would descend faster than this [default: 300 mm/min; 12 in/min for
+    /// an inch drawing].
     #[arg(long, value_parser = parse_rate, allow_hyphen_values = true)]
     plunge_feed: Option<f64>,
     /// Spindle speed, rpm.

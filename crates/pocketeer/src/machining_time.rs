@@ -41,7 +41,7 @@ pub struct TimeModel {
 pub struct MachiningTime {
     /// Feed moves at the cutting feed.
     pub cutting: f64,
-    /// Feed moves at the plunge feed.
+    /// Entries: feed moves at the plunge feed, and helices and ramps.
     pub plunging: f64,
     /// Rapid moves.
     pub rapid: f64,
@@ -118,7 +118,10 @@ impl TimeModel {
                 Move::Line { feed: Feed::Cut, .. } | Move::Arc { feed: Feed::Cut, .. } => {
                     t.cutting += self.feed_seconds(len, self.feed)
                 }
-                _ => t.plunging += self.feed_seconds(len, self.plunge_feed),
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => {
+                    let rate = feed.rate(self.feed, self.plunge_feed, len, at.z - m.to().z);
+                    t.plunging += self.feed_seconds(len, rate)
+                }
             }
             at = m.to();
         }

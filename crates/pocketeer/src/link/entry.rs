@@ -114,7 +114,7 @@ pub fn helix_moves(path: &mut Toolpath, helix: &Helix, z_top: f64, z: f64, sweep
         let a = start_angle + descend * k as f64 / pieces as f64;
         let zk = z_top + (z - z_top) * k as f64 / pieces as f64;
         let to = helix.center + Vector::from_angle(a) * helix.radius;
-        path.arc_to(Point3::at(to, zk), helix.center, a - angle, Feed::Plunge);
+        path.arc_to(Point3::at(to, zk), helix.center, a - angle, Feed::Ramp);
         angle = a;
     }
     // One flat turn at depth, in two halves, so the floor under the helix is clean.
@@ -147,7 +147,7 @@ pub fn ramp(path: &mut Toolpath, walk: &[Segment], z_top: f64, z: f64, angle: f6
         for s in walk {
             done += s.length();
             let zs = z_top + (z - z_top) * (done / total).min(1.0);
-            emit(path, s, zs, Feed::Plunge);
+            emit(path, s, zs, Feed::Ramp);
         }
     }
 }

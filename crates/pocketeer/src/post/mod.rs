@@ -294,7 +294,7 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
         match *m {
             Move::Rapid { to } => w.motion("G0", to, None, ""),
             Move::Line { to, feed } => {
-                let f = w.feed_word(rate(s, feed));
+                let f = w.feed_word(rate(s, feed, m, from));
                 w.motion("G1", to, None, &f)
             }
             Move::Arc {
@@ -303,7 +303,7 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
                 sweep,
                 feed,
             } => {
-                let f = w.feed_word(rate(s, feed));
+                let f = w.feed_word(rate(s, feed, m, from));
                 w.arc(from, to, center, sweep, &f)
             }
         }
@@ -324,11 +324,9 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     w.out
 }
 
-fn rate(s: &ProgramSettings, f: Feed) -> f64 {
-    match f {
-        Feed::Cut => s.feed,
-        Feed::Plunge => s.plunge_feed,
-    }
+/// The feed rate of move `m` from `from`.
+fn rate(s: &ProgramSettings, f: Feed, m: &Move, from: Point3) -> f64 {
+    f.rate(s.feed, s.plunge_feed, m.length(from), from.z - m.to().z)
 }
 
 /// A rate (feed or speed) without needless decimals.

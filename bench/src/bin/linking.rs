@@ -1,0 +1,255 @@
+//! The tool paths themselves, not the time to make them: machining time at fixed rates, cutting
+//! length, retracts and the tool's engagement of the program `pocket` writes with default
+//! flags, on drawings of the kinds the shop cuts, each checked for gouge and leftover.
+//! `cargo run --release --bin linking [-- --only NAME]`
+//!
+//! The rates are the ones the FreeCAD comparison of issue 18 uses: feed 1000, plunge 300,
+//! rapid 5000 mm/min, entries, retracts and links all counted by length, no fixed cost per
+//! retract (so that the figures compare with a time computed from lengths alone).
+
+use pocketeer::clear::ClearParams;
+use pocketeer::geom::{Pocket, Tolerance};
+use pocketeer::job::pocket_job;
+use pocketeer::link::{Direction, Entry, LinkParams};
+use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::simulate::{check_program, read_program, CheckParams};
+use pocketeer_bench::cases::{self, Ring};
+use std::f64::consts::{PI, TAU};
+
+const FEED: f64 = 1000.0;
+const PLUNGE: f64 = 300.0;
+const RAPID: f64 = 5000.0;
+
+struct Drawing {
+    name: String,
+    pockets: Vec<Pocket>,
+    tool: f64,
+    stepover: f64,
+}
+
+fn pocket_of(rings: Vec<Ring>) -> Pocket {
+    pocketeer_bench::pocket(&cases::Case {
+        name: String::new(),
+        rings,
+        distances: Vec::new(),
+    })
+}
+
+fn rect_ccw(x: f64, y: f64, w: f64, h: f64) -> Ring {
+    vec![(x, y, 0.0), (x + w, y, 0.0), (x + w, y + h, 0.0), (x, y + h, 0.0)]
+}
+
+fn rect_cw(x: f64, y: f64, w: f64, h: f64) -> Ring {
+    vec![(x, y, 0.0), (x, y + h, 0.0), (x + w, y + h, 0.0), (x + w, y, 0.0)]
+}
+
+fn circle_cw(cx: f64, cy: f64, r: f64) -> Ring {
+    vec![(cx + r, cy, -1.0), (cx - r, cy, -1.0)]
+}
+
+fn circle_ccw(cx: f64, cy: f64, r: f64) -> Ring {
+    vec![(cx + r, cy, 1.0), (cx - r, cy, 1.0)]
+}
+
+/// A rectangle with corner fillets of radius `f`, counter-clockwise.
+fn filleted(w: f64, h: f64, f: f64) -> Ring {
+    let b = (PI / 8.0).tan();
+    vec![
+        (f, 0.0, 0.0),
+        (w - f, 0.0, b),
+        (w, f, 0.0),
+        (w, h - f, b),
+        (w - f, h, 0.0),
+        (f, h, b),
+        (0.0, h - f, 0.0),
+        (0.0, f, b),
+    ]
+}
+
+fn star(points: usize, outer: f64, inner: f64) -> Ring {
+    (0..2 * points)
+        .map(|k| {
+            let a = PI / 2.0 + k as f64 * PI / points as f64;
+            let r = if k % 2 == 0 { outer } else { inner };
+            (100.0 + r * a.cos(), 100.0 + r * a.sin(), 0.0)
+        })
+        .collect()
+}
+
+/// Two overlapping circles of radius `r`, centres `gap` apart, as one clockwise island: the
+/// outline of their union (two arcs of more than half a turn).
+fn two_circles_cw(cx: f64, cy: f64, r: f64, gap: f64) -> Ring {
+    let h = (r * r - 0.25 * gap * gap).sqrt();
+    let half = (0.5 * gap / r).acos(); // half the angle the meeting points span at a centre
+    let sweep = TAU - 2.0 * half;
+    let b = -(sweep / 4.0).tan();
+    vec![(cx, cy + h, b), (cx, cy - h, b)]
+}
+
+fn drawings() -> Vec<Drawing> {
+    let mut out = Vec::new();
+    let rect_islands = cases::rounded_with_islands().rings;
+    for s in [0.3, 0.5, 0.7, 0.9] {
+        out.push(Drawing {
+            name: format!("rectangle 200x120, 8 round islands, {:.0} %", 100.0 * s),
+            pockets: vec![pocket_of(rect_islands.clone())],
+            tool: 6.0,
+            stepover: s,
+        });
+    }
+    out.push(Drawing {
+        name: "7-point star".into(),
+        pockets: vec![pocket_of(vec![star(7, 80.0, 35.0)])],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "48-tooth gear, hub island".into(),
+        pockets: vec![pocket_of(cases::gear().rings)],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "channel round two islands".into(),
+        pockets: vec![pocket_of(vec![
+            rect_ccw(0.0, 0.0, 160.0, 80.0),
+            rect_cw(10.0, 10.0, 65.0, 60.0),
+            rect_cw(85.0, 10.0, 65.0, 60.0),
+        ])],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "10x6 island grid".into(),
+        pockets: vec![pocket_of(cases::grid_of_islands().rings)],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "pocket in an island".into(),
+        pockets: vec![
+            pocket_of(vec![
+                rect_ccw(0.0, 0.0, 120.0, 100.0),
+                rect_cw(30.0, 25.0, 60.0, 50.0),
+            ]),
+            pocket_of(vec![rect_ccw(40.0, 35.0, 40.0, 30.0)]),
+        ],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "overlapping islands".into(),
+        pockets: vec![pocket_of(vec![
+            rect_ccw(0.0, 0.0, 140.0, 90.0),
+            two_circles_cw(45.0, 45.0, 18.0, 20.0),
+            two_circles_cw(100.0, 45.0, 15.0, 12.0),
+        ])],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "small fillets (r 1 mm)".into(),
+        pockets: vec![pocket_of(vec![filleted(100.0, 60.0, 1.0)])],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out.push(Drawing {
+        name: "two pockets".into(),
+        pockets: vec![
+            pocket_of(vec![rect_ccw(0.0, 0.0, 60.0, 40.0)]),
+            pocket_of(vec![circle_ccw(120.0, 20.0, 25.0)]),
+        ],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    let mut plate = vec![rect_ccw(0.0, 0.0, 400.0, 300.0)];
+    for i in 0..20 {
+        for j in 0..15 {
+            plate.push(circle_cw(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64, 4.0));
+        }
+    }
+    out.push(Drawing {
+        name: "plate 400x300, 300 holes of 8 mm".into(),
+        pockets: vec![pocket_of(plate)],
+        tool: 6.0,
+        stepover: 0.4,
+    });
+    out
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1))
+        .cloned();
+    let tol = Tolerance::default();
+    println!(
+        "| drawing | time s | cutting mm | rapid mm | retracts | p95 engagement ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let (mut total_time, mut total_retracts) = (0.0, 0);
+    for d in drawings() {
+        if only.as_ref().is_some_and(|o| !d.name.contains(o.as_str())) {
+            continue;
+        }
+        let r = 0.5 * d.tool;
+        let clear = ClearParams {
+            tool_radius: r,
+            stepover: d.stepover * d.tool,
+            allowance: 0.0,
+        };
+        let link = LinkParams {
+            depth: 3.0,
+            step_down: 3.0,
+            safe_z: 5.0,
+            feed_height: 1.0,
+            direction: Direction::Climb,
+            entry: Entry::Helix,
+            ramp_angle: 3f64.to_radians(),
+        };
+        let job = match pocket_job(&d.pockets, &clear, &link, &tol) {
+            Ok(j) => j,
+            Err(e) => {
+                println!("| {} | failed: {e} |", d.name);
+                continue;
+            }
+        };
+        let settings = ProgramSettings {
+            units: ProgramUnits::Millimetres,
+            feed: FEED,
+            plunge_feed: PLUNGE,
+            spindle_wait: 0.0,
+            ..ProgramSettings::default()
+        };
+        let text = write_gcode(&job.linked.toolpath, &settings, Dialect::LinuxCnc);
+        let program = read_program(&text).expect("our program reads back");
+        let params = CheckParams {
+            tool_radius: r,
+            depth: Some(3.0),
+            gouge_tolerance: 0.01,
+            leftover_tolerance: 0.05,
+            rapid_rate: RAPID,
+            per_retract: 0.0,
+        };
+        let report = check_program(&d.pockets, &program, &params, &tol).expect("the check runs");
+        let e = &report.engagement;
+        total_time += report.seconds;
+        total_retracts += report.retracts;
+        println!(
+            "| {} | {:.1} | {:.1} | {:.1} | {} | {:.0} | {:.0} | {:.1} | {:.4} | {:.4} |",
+            d.name,
+            report.seconds,
+            report.cut_length,
+            report.rapid_length,
+            report.retracts,
+            e.p95_deg,
+            e.max_deg,
+            e.above_150_percent,
+            report.gouge,
+            report.thickest
+        );
+    }
+    println!("| total | {total_time:.1} | | | {total_retracts} | | | | | |");
+}
