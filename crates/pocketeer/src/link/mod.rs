@@ -318,13 +318,11 @@ impl<'a> Linker<'a> {
             )
     }
 
-    /// Up to the safe height: at the feed rate out of the stock (no rapid ever moves below the
-    /// stock top), then rapid.
+    /// Straight up to the safe height, rapid: the tool rises through the column it has just
+    /// cut its way down to (every pass clears its part down from the floor of the one before),
+    /// as `check` accepts and FreeCAD and most CAM programs retract.
     fn retract(&mut self) {
         let p = self.path.position();
-        if p.z < 0.0 {
-            self.path.line(Point3::new(p.x, p.y, 0.0), Feed::Cut);
-        }
         if p.z < self.params.safe_z {
             self.path.rapid(Point3::new(p.x, p.y, self.params.safe_z));
         }
