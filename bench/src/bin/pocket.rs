@@ -77,6 +77,7 @@ fn main() {
                 direction: Direction::Climb,
                 entry: Entry::Helix,
                 ramp_angle: 3f64.to_radians(),
+                time: pocketeer::machining_time::TimeModel::default(),
             };
             let tol = &analysis.tolerance;
             let pockets = &analysis.nesting.pockets;

@@ -332,6 +332,12 @@ impl Settings {
                 EntryArg::Plunge => Entry::Plunge,
             },
             ramp_angle: args.ramp_angle.to_radians(),
+            time: pocketeer::machining_time::TimeModel {
+                feed: self.feed,
+                plunge_feed: self.plunge_feed,
+                rapid: self.rapid_rate,
+                per_retract: args.retract_time,
+            },
         }
     }
 

@@ -47,6 +47,7 @@
 //!     direction: Direction::Climb,
 //!     entry: Entry::Helix,
 //!     ramp_angle: 3f64.to_radians(),
+//!     time: pocketeer::machining_time::TimeModel::default(),
 //! };
 //! let job = pocketeer::job::pocket_job(pockets, &clear, &link, &analysis.tolerance).unwrap();
 //! let gcode = write_gcode(&job.linked.toolpath, &ProgramSettings::default(), Dialect::Grbl);

@@ -57,6 +57,7 @@ fn programs(dialect: Dialect) -> Vec<(String, String)> {
             direction,
             entry,
             ramp_angle: 3f64.to_radians(),
+            time: pocketeer::machining_time::TimeModel::default(),
         };
         let job = pocketeer::job::pocket_job(&pockets, &clear, &link, &Tolerance::default()).expect("job");
         let options = k > 0;

@@ -102,6 +102,7 @@ fn program(c: &Case, direction: Direction) -> String {
         direction,
         entry: Entry::Helix,
         ramp_angle: 3f64.to_radians(),
+        time: pocketeer::machining_time::TimeModel::default(),
     };
     let job = pocketeer::job::pocket_job(
         std::slice::from_ref(&c.pocket),

@@ -180,6 +180,7 @@ fn corpus_drawings_are_cleared_cleanly() {
                     direction: Direction::Climb,
                     entry: Entry::Helix,
                     ramp_angle: 3f64.to_radians(),
+                    time: pocketeer::machining_time::TimeModel::default(),
                 },
                 &analysis.tolerance,
             )
@@ -277,6 +278,7 @@ fn pocket_jobs_are_invariant_under_start_rotation_mirroring_and_translation() {
             direction: Direction::Climb,
             entry: Entry::Helix,
             ramp_angle: 3f64.to_radians(),
+            time: pocketeer::machining_time::TimeModel::default(),
         };
         let j = pocketeer::job::pocket_job(std::slice::from_ref(p), &clear, &link, &tol).unwrap();
         let loops: usize = j.plans.iter().map(|p| p.loop_count()).sum();

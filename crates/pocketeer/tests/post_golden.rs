@@ -32,6 +32,7 @@ fn program(dialect: Dialect, units: ProgramUnits) -> String {
         direction: Direction::Climb,
         entry: Entry::Helix,
         ramp_angle: 3f64.to_radians(),
+        time: pocketeer::machining_time::TimeModel::default(),
     };
     let job = pocketeer::job::pocket_job(&[pocket], &clear, &link, &Tolerance::default()).unwrap();
     let settings = ProgramSettings {

@@ -17,6 +17,7 @@
 
 mod entry;
 mod lead;
+mod route;
 mod walk;
 
 pub use entry::Helix;
@@ -24,7 +25,12 @@ pub use entry::Helix;
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
 use crate::geom::{Point, Segment, Tolerance};
+use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
+
+/// Longest move at depth through uncut stock from one branch to the next, in tool radii: a
+/// deliberate slot, no wider than the tool, instead of a retract and a new entry.
+pub const MAX_SLOT_LINK_RADII: f64 = 8.0;
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
 ///
@@ -73,6 +79,9 @@ pub struct LinkParams {
     pub entry: Entry,
     /// Largest angle of helix and ramp moves from the horizontal, radians.
     pub ramp_angle: f64,
+    /// The feeds, rapid rate and retract cost the linking's choices are timed with (the
+    /// cutting and plunge feeds the program will have).
+    pub time: TimeModel,
 }
 
 /// Why a tool path cannot be linked: a parameter out of range.
@@ -177,6 +186,7 @@ pub fn link(
         z: 0.0,
         z_top: 0.0,
         down: false,
+        last: (Vec::new(), false),
     };
     let passes = pass_depths(params.depth, params.step_down);
     for (pocket, plan) in jobs {
@@ -212,6 +222,8 @@ struct Linker<'a> {
     z_top: f64,
     /// True while the tool is down at the pass depth.
     down: bool,
+    /// The walk last cut (the tool is at its end), and whether it is a closed loop.
+    last: (Vec<Segment>, bool),
 }
 
 impl<'a> Linker<'a> {
@@ -277,8 +289,22 @@ impl<'a> Linker<'a> {
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
-        let mut segments = walk::walk_from(item, self.here(), reverse, self.tol.eps);
-        if item.closed && part.level == 0 && self.plan().allowance > 0.0 {
+        let leads = item.closed && part.level == 0 && self.plan().allowance > 0.0;
+        // Where the straight move to the next path would come too near a wall, the way round
+        // along the path just cut (the walk then starts where that way arrives).
+        let mut from = self.here();
+        let mut route = None;
+        if !enter && self.down && !leads {
+            let q = walk::walk_from(item, from, reverse, self.tol.eps)[0].start();
+            if !self.stays_inside(from, q, part.distance) {
+                if let Some((moves, start)) = self.route_along_last(part, item, q) {
+                    route = Some(moves);
+                    from = start;
+                }
+            }
+        }
+        let mut segments = walk::walk_from(item, from, reverse, self.tol.eps);
+        if leads {
             let (plan, pocket) = (self.plan(), self.pocket());
             if let Some((lead_in, lead_out)) = lead::leads(
                 &segments,
@@ -293,7 +319,13 @@ impl<'a> Linker<'a> {
             }
         }
         let q = segments[0].start();
-        if enter || !self.down {
+        if let Some(moves) = route {
+            walk::follow(&mut self.path, &moves, self.z);
+            self.path.line(Point3::at(q, self.z), Feed::Cut);
+        } else if enter && self.down && self.slot_link(part, q) {
+            // A short slot through stock an enclosing part will clear anyway.
+            self.path.line(Point3::at(q, self.z), Feed::Cut);
+        } else if enter || !self.down {
             self.retract();
             self.enter(part, &segments);
         } else if !self.stays_inside(self.here(), q, part.distance) {
@@ -304,6 +336,63 @@ impl<'a> Linker<'a> {
         }
         walk::follow(&mut self.path, &segments, self.z);
         self.down = true;
+        self.last = (segments, item.closed);
+    }
+
+    /// The way at depth to `item` of `part` (whose inside is cut) along the walk just cut and
+    /// straight across, staying the part's distance from every wall (see [`route::along_last`]),
+    /// when it takes less time than a retract and coming down near `q`, the start the straight
+    /// move would have had.
+    fn route_along_last(&self, part: &Part, item: &Path, q: Point) -> Option<(Vec<Segment>, Point)> {
+        let (walk, closed) = (&self.last.0, self.last.1);
+        let here = self.here();
+        let (moves, b) = route::along_last(walk, closed, item, self.tol.eps, |a, b| {
+            self.stays_inside(a, b, part.distance)
+        })?;
+        let a = moves.last().map_or(here, Segment::end);
+        let length: f64 = moves.iter().map(Segment::length).sum::<f64>() + a.distance(b);
+        let (p, t) = (self.params, &self.params.time);
+        let approach = p.feed_height.min(p.safe_z - self.z);
+        let hop = t.hop_seconds(p.safe_z - self.z, here.distance(q), p.safe_z - self.z - approach)
+            + t.feed_seconds(approach, t.plunge_feed);
+        (t.feed_seconds(length, t.feed) < hop).then_some((moves, b))
+    }
+
+    /// True when the tool, down at the pass depth, should reach `q` (where `part`, not cut yet
+    /// and with nothing inside it cut, starts) by a straight slot at depth rather than a
+    /// retract and a new entry: the slot is at most [`MAX_SLOT_LINK_RADII`] long, lies in the
+    /// region of an enclosing part (at least its distance from every wall: stock that part's
+    /// loops are still to clear, so nothing is cut that the plan would not cut), and takes
+    /// less time than going up, across, down and entering.
+    fn slot_link(&self, part: &Part, q: Point) -> bool {
+        let (plan, p) = (self.plan(), self.params);
+        let here = self.here();
+        let length = here.distance(q);
+        if length > MAX_SLOT_LINK_RADII * plan.tool_radius {
+            return false;
+        }
+        let mut around = part.parent;
+        let inside = loop {
+            match around {
+                Some(i) if self.stays_inside(here, q, plan.parts[i].distance) => break true,
+                Some(i) => around = plan.parts[i].parent,
+                None => break false,
+            }
+        };
+        if !inside {
+            return false;
+        }
+        let t = &p.time;
+        let drop = self.z_top - self.z;
+        let entry_length = drop / p.ramp_angle.sin();
+        let approach = p.feed_height.min(p.safe_z - self.z_top);
+        let hop = t.hop_seconds(p.safe_z - self.z, length, p.safe_z - self.z_top - approach)
+            + t.feed_seconds(approach, t.plunge_feed)
+            + t.feed_seconds(
+                entry_length,
+                Feed::Ramp.rate(t.feed, t.plunge_feed, entry_length, drop),
+            );
+        t.feed_seconds(length, t.feed) < hop
     }
 
     /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from

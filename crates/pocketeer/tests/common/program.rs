@@ -43,6 +43,7 @@ pub fn our_program(
         direction: Direction::Climb,
         entry,
         ramp_angle: 3f64.to_radians(),
+        time: pocketeer::machining_time::TimeModel::default(),
     };
     let job = pocketeer::job::pocket_job(pockets, &clear, &link, &Tolerance::default()).expect("job");
     (

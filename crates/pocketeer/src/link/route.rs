@@ -1,0 +1,116 @@
+//! Links at depth through what is already cut: from the end of the path just cut, along it to
+//! its point nearest the next path, then straight across, where the straight move from where
+//! the tool is would come too near a wall.
+
+use crate::clear::Path;
+use crate::geom::{closest_param, segment_distance, Point, Segment};
+
+/// Most pairs of segments measured when looking for the way across (beyond it the linker
+/// retracts instead: two loops of a thousand pieces each).
+const MAX_PAIRS: usize = 40_000;
+
+/// Most candidate crossings tried, nearest first, each with a test against the walls.
+const MAX_TRIES: usize = 8;
+
+/// A way from the end of `last` (the walk just cut, ending where the tool is) to `next`: the
+/// moves back along `last` to a point `a` of it, and the point `b` of `next` to go straight to
+/// from there, for which `clear(a, b)` holds; the shortest such way over the pairs of nearest
+/// points between the two paths' segments. `closed` when `last` is a closed walk (it may then
+/// be followed either way round).
+pub fn along_last(
+    last: &[Segment],
+    closed: bool,
+    next: &Path,
+    eps: f64,
+    clear: impl Fn(Point, Point) -> bool,
+) -> Option<(Vec<Segment>, Point)> {
+    if last.is_empty() || next.segments.is_empty() || last.len() * next.segments.len() > MAX_PAIRS {
+        return None;
+    }
+    let lengths: Vec<f64> = last.iter().map(Segment::length).collect();
+    let total: f64 = lengths.iter().sum();
+    let mut before = 0.0;
+    // (length of the way, segment of `last`, parameter on it, point on it, point of `next`)
+    let mut candidates: Vec<(f64, usize, f64, Point, Point)> = Vec::new();
+    for (i, a) in last.iter().enumerate() {
+        for b in &next.segments {
+            let (d, pa, pb) = segment_distance(a, b, eps);
+            let t = closest_param(a, pa);
+            let s = before + t * lengths[i];
+            // The tool is at the end of `last`, which is also its start when it is closed.
+            let back = total - s;
+            let along = if closed { s.min(back) } else { back };
+            candidates.push((along + d, i, t, pa, pb));
+        }
+        before += lengths[i];
+    }
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let (_, i, t, _, b) = candidates
+        .into_iter()
+        .take(MAX_TRIES)
+        .find(|&(_, _, _, a, b)| clear(a, b))?;
+    let s: f64 = lengths[..i].iter().sum::<f64>() + t * lengths[i];
+    let forward = closed && s < total - s;
+    let mut moves: Vec<Segment> = Vec::new();
+    if forward {
+        moves.extend(last[..i].iter().copied());
+        moves.push(last[i].subsegment(0.0, t));
+    } else {
+        moves.extend(last[i + 1..].iter().rev().map(Segment::reversed));
+        moves.push(last[i].subsegment(t, 1.0).reversed());
+    }
+    moves.retain(|m| m.length() > eps);
+    Some((moves, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Contour;
+
+    fn square(x: f64, y: f64, w: f64) -> Vec<Segment> {
+        let p = Point::new;
+        Contour::polygon(&[p(x, y), p(x + w, y), p(x + w, y + w), p(x, y + w)]).segments
+    }
+
+    #[test]
+    fn the_way_follows_the_loop_just_cut_to_where_the_next_is_nearest() {
+        // The tool is back at (0, 0) after a 10 mm square; the next square is to the right.
+        let last = square(0.0, 0.0, 10.0);
+        let next = Path {
+            segments: square(14.0, 2.0, 6.0),
+            closed: true,
+        };
+        let (moves, b) = along_last(&last, true, &next, 1e-9, |_, _| true).unwrap();
+        // Along the bottom edge (the shorter way round) to its corner (10, 0), then 4.47 mm
+        // across to the next square's corner (14, 2): 14.47 mm, shorter than going on up the
+        // right edge to face the next square 4 mm away.
+        assert_eq!(moves[0].start(), Point::new(0.0, 0.0));
+        for w in moves.windows(2) {
+            assert!(w[0].end().distance(w[1].start()) < 1e-12);
+        }
+        let end = moves.last().unwrap().end();
+        assert!(end.distance(Point::new(10.0, 0.0)) < 1e-9, "{end:?}");
+        assert!(b.distance(Point::new(14.0, 2.0)) < 1e-9, "{b:?}");
+        // With the corner forbidden, the way goes on up the right edge.
+        let (moves, b) = along_last(&last, true, &next, 1e-9, |a, _| a.y > 0.5).unwrap();
+        let end = moves.last().unwrap().end();
+        assert!(
+            end.x == 10.0 && end.y > 0.5 && (b.x - 14.0).abs() < 1e-9,
+            "{end:?} {b:?}"
+        );
+    }
+
+    #[test]
+    fn a_way_the_walls_forbid_is_not_taken() {
+        let last = square(0.0, 0.0, 10.0);
+        let next = Path {
+            segments: square(14.0, 2.0, 6.0),
+            closed: true,
+        };
+        assert!(along_last(&last, true, &next, 1e-9, |_, _| false).is_none());
+        // An open walk is followed back from its end only.
+        let (moves, _) = along_last(&last[..2], false, &next, 1e-9, |_, _| true).unwrap();
+        assert!(moves.iter().all(|m| m.start().x == 10.0 || m.start().y == 10.0));
+    }
+}
