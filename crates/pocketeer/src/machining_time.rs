@@ -111,15 +111,7 @@ impl TimeModel {
     /// ```
     pub fn toolpath(&self, path: &Toolpath) -> MachiningTime {
         let mut t = MachiningTime::default();
-        let mut at = path.start;
-        let counted = match path.moves.first() {
-            Some(Move::Rapid { to }) => {
-                at = *to;
-                &path.moves[1..]
-            }
-            _ => &path.moves[..],
-        };
-        for m in counted {
+        for (at, m) in path.counted_moves() {
             let len = m.length(at);
             match m {
                 Move::Rapid { to } => {
@@ -136,7 +128,6 @@ impl TimeModel {
                     t.plunging += self.feed_seconds(len, rate)
                 }
             }
-            at = m.to();
         }
         t
     }

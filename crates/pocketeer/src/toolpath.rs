@@ -203,15 +203,7 @@ impl Toolpath {
     /// start of the program (`start` is a stand-in for that unknown place): it is not counted.
     pub fn stats(&self) -> Stats {
         let mut s = Stats::default();
-        let mut at = self.start;
-        let counted = match self.moves.first() {
-            Some(Move::Rapid { to }) => {
-                at = *to;
-                &self.moves[1..]
-            }
-            _ => &self.moves[..],
-        };
-        for m in counted {
+        for (at, m) in self.counted_moves() {
             let len = m.length(at);
             match m {
                 Move::Rapid { to } => {
@@ -223,9 +215,21 @@ impl Toolpath {
                 Move::Line { feed: Feed::Cut, .. } | Move::Arc { feed: Feed::Cut, .. } => s.cut_length += len,
                 _ => s.plunge_length += len,
             }
-            at = m.to();
         }
         s
+    }
+
+    /// The moves the figures count, each with where it starts: all but a first rapid, which
+    /// only brings the tool from wherever it is to the start of the program (`start` is a
+    /// stand-in for that unknown place).
+    pub fn counted_moves(&self) -> impl Iterator<Item = (Point3, &Move)> + '_ {
+        let skip = usize::from(matches!(self.moves.first(), Some(Move::Rapid { .. })));
+        let first = if skip == 1 { self.moves[0].to() } else { self.start };
+        self.moves[skip..].iter().scan(first, |at, m| {
+            let from = *at;
+            *at = m.to();
+            Some((from, m))
+        })
     }
 
     /// The lowest Z reached.

@@ -59,14 +59,7 @@ impl Arc {
         } else {
             center + Vector::from_angle(start_angle + sweep) * radius
         };
-        Arc {
-            center,
-            radius,
-            start_angle,
-            sweep,
-            start,
-            end,
-        }
+        Arc::with_ends(center, radius, start_angle, sweep, start, end)
     }
 
     /// Centre.

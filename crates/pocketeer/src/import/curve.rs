@@ -358,31 +358,8 @@ impl Nurbs {
     /// on an explicit span keeps both ends of a span on that span's piece, which matters where
     /// a knot of full multiplicity lets the curve jump.
     pub fn point_in_span(&self, k: usize, t: f64) -> Point {
-        let p = self.degree;
-        // Degrees above MAX_DEGREE are refused on import; the fixed array avoids an allocation
-        // per evaluation.
-        let mut d = [[0.0f64; 3]; MAX_DEGREE + 1];
-        for (j, dj) in d.iter_mut().enumerate().take(p + 1) {
-            let i = k + j - p;
-            let w = self.weights[i];
-            *dj = [self.points[i].x * w, self.points[i].y * w, w];
-        }
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = k + j - p;
-                let denom = self.knots[i + p + 1 - r] - self.knots[i];
-                let alpha = if denom == 0.0 {
-                    0.0
-                } else {
-                    (t - self.knots[i]) / denom
-                };
-                let prev = d[j - 1];
-                for (c, v) in d[j].iter_mut().enumerate() {
-                    *v = (1.0 - alpha) * prev[c] + alpha * *v;
-                }
-            }
-        }
-        let [x, y, w] = d[p];
+        // The point is the blossom at (t, …, t).
+        let [x, y, w] = super::span_polynomial::blossom(self, k, |_| t);
         Point::new(x / w, y / w)
     }
 

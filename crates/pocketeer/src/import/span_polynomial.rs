@@ -107,8 +107,9 @@ impl SpanPolynomial {
 }
 
 /// The blossom of the homogeneous piece of `nurbs` on span `k` at the parameters
-/// `param(1), …, param(degree)`.
-fn blossom(nurbs: &Nurbs, k: usize, param: impl Fn(usize) -> f64) -> [f64; 3] {
+/// `param(1), …, param(degree)`: de Boor's algorithm with a parameter for each level (the
+/// point at t is the blossom at t, …, t).
+pub(super) fn blossom(nurbs: &Nurbs, k: usize, param: impl Fn(usize) -> f64) -> [f64; 3] {
     let p = nurbs.degree;
     let mut d = [[0.0f64; 3]; MAX_DEGREE + 1];
     for (j, dj) in d.iter_mut().enumerate().take(p + 1) {

@@ -23,16 +23,20 @@ fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
     Contour::polygon(&[p(x0, y0), p(x1, y0), p(x1, y1), p(x0, y1)])
 }
 
-fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, PreparedPocket) {
-    let tol = Tolerance::default();
+/// The plan of `pocket` for a 6 mm tool at `stepover`, and the pocket prepared.
+fn planned(pocket: &Pocket, stepover: f64) -> (ClearPlan, PreparedPocket) {
     let clear = ClearParams {
         tool_radius: 3.0,
         stepover,
         allowance: 0.0,
     };
-    let plan = plan_pocket(pocket, &clear, &tol).unwrap();
-    let prepared = PreparedPocket::new(pocket);
-    let l = link(&[(&prepared, &plan)], &params(entry), &tol).unwrap();
+    let plan = plan_pocket(pocket, &clear, &Tolerance::default()).unwrap();
+    (plan, PreparedPocket::new(pocket))
+}
+
+fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, PreparedPocket) {
+    let (plan, prepared) = planned(pocket, stepover);
+    let l = link(&[(&prepared, &plan)], &params(entry), &Tolerance::default()).unwrap();
     (l, prepared)
 }
 
@@ -146,13 +150,7 @@ fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
         islands,
     };
     let tol = Tolerance::default();
-    let clear = ClearParams {
-        tool_radius: 3.0,
-        stepover: 2.4,
-        allowance: 0.0,
-    };
-    let plan = plan_pocket(&pocket, &clear, &tol).unwrap();
-    let prepared = PreparedPocket::new(&pocket);
+    let (plan, prepared) = planned(&pocket, 2.4);
     let leaves = plan.parts.iter().filter(|p| p.children.is_empty()).count();
     assert!(leaves >= 4, "{leaves} leaves");
     // Linked with a retract costing its lengths only, and with half a second more.
@@ -276,13 +274,7 @@ fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
         islands: vec![rect(20.0, 15.0, 35.0, 25.0).reversed()],
     };
     let tol = Tolerance::default();
-    let clear = ClearParams {
-        tool_radius: 3.0,
-        stepover: 2.4,
-        allowance: 0.0,
-    };
-    let plan = plan_pocket(&pocket, &clear, &tol).unwrap();
-    let prepared = PreparedPocket::new(&pocket);
+    let (plan, prepared) = planned(&pocket, 2.4);
     for (direction, wall_on_right) in [(Direction::Climb, true), (Direction::Conventional, false)] {
         let p = LinkParams {
             direction,
