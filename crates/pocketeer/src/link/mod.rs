@@ -298,8 +298,13 @@ impl<'a> Linker<'a> {
             let q = walk::walk_from(item, from, reverse, self.tol.eps)[0].start();
             if !self.stays_inside(from, q, part.distance) {
                 if let Some((moves, start)) = self.route_along_last(part, item, q) {
-                    route = Some(moves);
-                    from = start;
+                    // The move across is to where the walk will start, checked as it is made.
+                    let a = moves.last().map_or(from, Segment::end);
+                    let q = walk::walk_from(item, start, reverse, self.tol.eps)[0].start();
+                    if self.stays_inside(a, q, part.distance) {
+                        route = Some(moves);
+                        from = start;
+                    }
                 }
             }
         }

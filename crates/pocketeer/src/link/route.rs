@@ -3,7 +3,7 @@
 //! the tool is would come too near a wall.
 
 use crate::clear::Path;
-use crate::geom::{closest_param, segment_distance, Point, Segment};
+use crate::geom::{closest_param, segment_distance, Line, Point, Segment};
 
 /// Most pairs of segments measured when looking for the way across (beyond it the linker
 /// retracts instead: two loops of a thousand pieces each).
@@ -15,8 +15,9 @@ const MAX_TRIES: usize = 8;
 /// A way from the end of `last` (the walk just cut, ending where the tool is) to `next`: the
 /// moves back along `last` to a point `a` of it, and the point `b` of `next` to go straight to
 /// from there, for which `clear(a, b)` holds; the shortest such way over the pairs of nearest
-/// points between the two paths' segments. `closed` when `last` is a closed walk (it may then
-/// be followed either way round).
+/// points between the two paths' segments (an open `next` is started at one of its ends, so
+/// `b` is one of them). `closed` when `last` is a closed walk (it may then be followed either
+/// way round).
 pub fn along_last(
     last: &[Segment],
     closed: bool,
@@ -32,8 +33,21 @@ pub fn along_last(
     let mut before = 0.0;
     // (length of the way, segment of `last`, parameter on it, point on it, point of `next`)
     let mut candidates: Vec<(f64, usize, f64, Point, Point)> = Vec::new();
+    // An open path is walked from one of its ends: those are the only places to arrive at.
+    let ends: Vec<Segment> = if next.closed {
+        next.segments.clone()
+    } else {
+        let (first, last_end) = (
+            next.segments[0].start(),
+            next.segments[next.segments.len() - 1].end(),
+        );
+        vec![
+            Segment::Line(Line::new(first, first)),
+            Segment::Line(Line::new(last_end, last_end)),
+        ]
+    };
     for (i, a) in last.iter().enumerate() {
-        for b in &next.segments {
+        for b in &ends {
             let (d, pa, pb) = segment_distance(a, b, eps);
             let t = closest_param(a, pa);
             let s = before + t * lengths[i];
@@ -112,5 +126,23 @@ mod tests {
         // An open walk is followed back from its end only.
         let (moves, _) = along_last(&last[..2], false, &next, 1e-9, |_, _| true).unwrap();
         assert!(moves.iter().all(|m| m.start().x == 10.0 || m.start().y == 10.0));
+    }
+
+    #[test]
+    fn an_open_path_is_arrived_at_one_of_its_ends() {
+        // A clean-up stroke beside the square: its middle is nearest, but it is walked from an
+        // end, and the move across must be to that end (a move to its middle was checked
+        // against the walls while the tool went to an end: a gouge on a real drawing).
+        let last = square(0.0, 0.0, 10.0);
+        let p = Point::new;
+        let next = Path {
+            segments: vec![
+                Segment::Line(Line::new(p(13.0, -6.0), p(13.0, 5.0))),
+                Segment::Line(Line::new(p(13.0, 5.0), p(13.0, 16.0))),
+            ],
+            closed: false,
+        };
+        let (_, b) = along_last(&last, true, &next, 1e-9, |_, _| true).unwrap();
+        assert!(b == p(13.0, -6.0) || b == p(13.0, 16.0), "{b:?}");
     }
 }
