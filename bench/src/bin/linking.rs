@@ -163,6 +163,20 @@ fn drawings() -> Vec<Drawing> {
         tool: 6.0,
         stepover: 0.4,
     });
+    // Thirty rings (a 20 mm hole in a 12 mm wide ring), drawn in a scrambled order.
+    let rings = (0..30usize)
+        .map(|k| {
+            let s = (k * 11) % 30;
+            let (x, y) = (25.0 + 50.0 * (s % 6) as f64, 25.0 + 50.0 * (s / 6) as f64);
+            pocket_of(vec![circle_ccw(x, y, 22.0), circle_cw(x, y, 10.0)])
+        })
+        .collect();
+    out.push(Drawing {
+        name: "30 rings, drawn in a scrambled order".into(),
+        pockets: rings,
+        tool: 6.0,
+        stepover: 0.4,
+    });
     let mut plate = vec![rect_ccw(0.0, 0.0, 400.0, 300.0)];
     for i in 0..20 {
         for j in 0..15 {

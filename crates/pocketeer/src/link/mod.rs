@@ -17,10 +17,12 @@
 
 mod entry;
 mod lead;
+mod order;
 mod route;
 mod walk;
 
 pub use entry::Helix;
+pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
@@ -189,18 +191,30 @@ pub fn link(
         last: (Vec::new(), false),
     };
     let passes = pass_depths(params.depth, params.step_down);
-    for (pocket, plan) in jobs {
+    // Each separate piece of the job (a root part of a pocket) is cut through all its passes
+    // before the next; the pieces in a short tour over the middles of their outer loops.
+    let pieces: Vec<(usize, usize)> = (jobs.iter().enumerate())
+        .flat_map(|(j, (_, plan))| plan.roots.iter().map(move |&r| (j, r)))
+        .collect();
+    let places: Vec<Point> = pieces
+        .iter()
+        .map(|&(j, r)| {
+            let b = jobs[j].1.parts[r].outer.bbox();
+            b.min.midpoint(b.max)
+        })
+        .collect();
+    for k in tour(&places, start.xy()) {
+        let (j, root) = pieces[k];
+        let (pocket, plan) = jobs[j];
         linker.pocket = Some(pocket);
         linker.plan = Some(plan);
-        for &root in &plan.roots {
-            let mut z_top = 0.0;
-            for &z in &passes {
-                linker.z = z;
-                linker.z_top = z_top;
-                linker.cut(root);
-                linker.retract();
-                z_top = z;
-            }
+        let mut z_top = 0.0;
+        for &z in &passes {
+            linker.z = z;
+            linker.z_top = z_top;
+            linker.cut(root);
+            linker.retract();
+            z_top = z;
         }
     }
     Ok(Linked {

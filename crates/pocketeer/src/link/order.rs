@@ -1,0 +1,134 @@
+//! The order in which the separate pieces of a job (each pocket's separate parts) are cut: a
+//! short tour over their places, nearest first and then untangled by 2-opt.
+
+use crate::geom::Point;
+
+/// Most places the 2-opt pass works on: its rounds take the square of the count.
+const MAX_TWO_OPT: usize = 2_000;
+
+/// Most rounds of 2-opt: each removes every crossing it finds; few are needed after the
+/// nearest-first tour.
+const MAX_ROUNDS: usize = 25;
+
+/// The order to visit `places` in, starting from `start`: nearest first, then segments of the
+/// tour reversed while that shortens it (2-opt, for up to 2 000 places).
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// use pocketeer::link::tour;
+/// let p = Point::new;
+/// let order = tour(&[p(30.0, 0.0), p(10.0, 0.0), p(20.0, 0.0)], p(0.0, 0.0));
+/// assert_eq!(order, vec![1, 2, 0]);
+/// ```
+pub fn tour(places: &[Point], start: Point) -> Vec<usize> {
+    let n = places.len();
+    let mut left: Vec<usize> = (0..n).collect();
+    let mut order = Vec::with_capacity(n);
+    let mut here = start;
+    while !left.is_empty() {
+        let k = (0..left.len())
+            .min_by(|&a, &b| {
+                places[left[a]]
+                    .distance_sq(here)
+                    .total_cmp(&places[left[b]].distance_sq(here))
+            })
+            .unwrap_or(0);
+        let next = left.swap_remove(k);
+        here = places[next];
+        order.push(next);
+    }
+    if n <= MAX_TWO_OPT {
+        two_opt(&mut order, places, start);
+    }
+    order
+}
+
+/// Reverses stretches of the open tour from `start` through `order` while that shortens it.
+fn two_opt(order: &mut [usize], places: &[Point], start: Point) {
+    let n = order.len();
+    let at = |order: &[usize], i: usize| if i == 0 { start } else { places[order[i - 1]] };
+    for _ in 0..MAX_ROUNDS {
+        let mut better = false;
+        // Reversing order[i..=j] swaps the legs into i and out of j.
+        for i in 0..n {
+            for j in i + 1..n {
+                let (a, b) = (at(order, i), places[order[i]]);
+                let c = places[order[j]];
+                // The leg out of the reversed stretch, none when it ends the tour.
+                let (out_before, out_after) = match order.get(j + 1) {
+                    Some(&k) => (c.distance(places[k]), b.distance(places[k])),
+                    None => (0.0, 0.0),
+                };
+                let before = a.distance(b) + out_before;
+                let after = a.distance(c) + out_after;
+                if after < before - 1e-9 {
+                    order[i..=j].reverse();
+                    better = true;
+                }
+            }
+        }
+        if !better {
+            break;
+        }
+    }
+}
+
+/// Length of the open tour from `start` through `places` in `order`.
+pub fn tour_length(order: &[usize], places: &[Point], start: Point) -> f64 {
+    let mut here = start;
+    let mut total = 0.0;
+    for &i in order {
+        total += here.distance(places[i]);
+        here = places[i];
+    }
+    total
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shuffled_grid_is_toured_nearly_as_a_boustrophedon() {
+        // 10 x 6 places 20 mm apart, in a scrambled order: the row-by-row tour from the corner
+        // is 59 steps of 20 mm (and the first 0); the tour found is within a few per cent.
+        let mut places = Vec::new();
+        for k in 0..60usize {
+            let s = (k * 37) % 60;
+            places.push(Point::new(20.0 * (s % 10) as f64, 20.0 * (s / 10) as f64));
+        }
+        let start = Point::new(0.0, 0.0);
+        let order = tour(&places, start);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..60).collect::<Vec<_>>());
+        let length = tour_length(&order, &places, start);
+        assert!(length <= 1.05 * 59.0 * 20.0, "{length}");
+        let drawn = tour_length(&(0..60).collect::<Vec<_>>(), &places, start);
+        assert!(
+            length < 0.5 * drawn,
+            "{length} against {drawn} in the drawing's order"
+        );
+    }
+
+    #[test]
+    fn two_opt_untangles_a_crossing() {
+        // Nearest first from the origin goes 1, 2, then far to 3 and back to 0: reversing
+        // the middle is shorter.
+        let p = Point::new;
+        let places = [p(0.0, 10.0), p(1.0, 0.0), p(2.0, 0.0), p(3.0, 10.0)];
+        let order = tour(&places, p(0.0, 0.0));
+        let length = tour_length(&order, &places, p(0.0, 0.0));
+        // Every order of the four, tried.
+        let mut best = f64::INFINITY;
+        for a in 0..4usize {
+            for b in (0..4).filter(|&b| b != a) {
+                for c in (0..4).filter(|&c| c != a && c != b) {
+                    let d = 6 - a - b - c;
+                    best = best.min(tour_length(&[a, b, c, d], &places, p(0.0, 0.0)));
+                }
+            }
+        }
+        assert!(length <= best + 1e-9, "{order:?}: {length} against {best}");
+    }
+}
