@@ -43,8 +43,7 @@ pub fn closest_point(seg: &Segment, p: Point) -> Point {
 pub fn distance_from_segment(seg: &Segment, p: Point) -> f64 {
     match seg {
         Segment::Line(l) => line_point_distance(l, p),
-        // The arc's ends are known: sign tests instead of an angle.
-        Segment::Arc(a) => arc_point_distance_with_ends(a, a.start(), a.end(), p),
+        Segment::Arc(a) => arc_point_distance(a, p),
     }
 }
 
@@ -53,10 +52,10 @@ pub(crate) fn line_point_distance(l: &Line, p: Point) -> f64 {
     l.point_at(l.param_of(p).clamp(0.0, 1.0)).distance(p)
 }
 
-/// Distance from `p` to the arc `a` whose end points `start` and `end` are already known:
-/// [`distance_from_segment`] without trigonometry, for indexes that measure the same arcs often.
-pub(crate) fn arc_point_distance_with_ends(a: &Arc, start: Point, end: Point, p: Point) -> f64 {
+/// Distance from `p` to the arc `a`: sign tests against its stored ends instead of an angle.
+fn arc_point_distance(a: &Arc, p: Point) -> f64 {
     let v = p - a.center();
+    let (start, end) = (a.start(), a.end());
     if in_sweep(a.sweep(), start - a.center(), end - a.center(), v) {
         (v.length() - a.radius()).abs()
     } else {
@@ -146,4 +145,36 @@ fn interior_candidates(arc: &Arc, other: &Segment) -> Vec<Point> {
         .filter(|d| arc.contains_angle(d.angle(), 0.0))
         .map(|d| arc.center() + d * arc.radius())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sign tests agree with the angle test all round arcs of every kind of sweep, both
+    /// ways.
+    #[test]
+    fn arc_distances_by_sign_tests_match_the_angle_test() {
+        use std::f64::consts::{PI, TAU};
+        let c = Point::new(3.0, -2.0);
+        for &sweep in &[0.3, 1.5, PI, 4.0, 6.0, TAU, -0.3, -PI, -4.0, -TAU] {
+            for k in 0..12 {
+                let a = Arc::new(c, 2.0, k as f64 * 0.55 - 3.0, sweep);
+                for j in 0..72 {
+                    let t = j as f64 * TAU / 72.0 + 0.01;
+                    for r in [0.0, 0.5, 2.0, 3.5] {
+                        let p = c + Vector::from_angle(t) * r;
+                        let v = p - c;
+                        let want = if v.length_sq() > 0.0 && a.contains_angle(v.angle(), 0.0) {
+                            (v.length() - a.radius()).abs()
+                        } else {
+                            a.start().distance(p).min(a.end().distance(p))
+                        };
+                        let got = distance_from_segment(&Segment::Arc(a), p);
+                        assert!((got - want).abs() < 1e-12, "sweep {sweep} k {k} j {j} r {r}");
+                    }
+                }
+            }
+        }
+    }
 }

@@ -1,8 +1,7 @@
 //! Spatial indexes over bounding boxes and segments (on a [`PackedTree`]), for finding the
 //! pairs of elements that may touch, and distances, without testing every pair.
 
-use super::distance::{arc_point_distance_with_ends, line_point_distance};
-use super::{segment_distance, Aabb, PackedTree, Point, Segment};
+use super::{distance_from_segment, segment_distance, Aabb, PackedTree, Point, Segment};
 
 /// Boxes indexed by their position in the slice they were built from.
 ///
@@ -176,8 +175,8 @@ pub struct Stopped {
 }
 
 /// Segments indexed for distance queries: a best-first search through a [`PackedTree`]
-/// visits only the few segments near the query point, however many there are. Each arc's end
-/// points are computed once, so that measuring a distance takes no trigonometry.
+/// visits only the few segments near the query point, however many there are. Arcs keep their
+/// end points, so measuring a distance takes no trigonometry.
 ///
 /// ```
 /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
@@ -189,32 +188,7 @@ pub struct Stopped {
 /// ```
 pub struct SegmentIndex {
     tree: PackedTree,
-    segments: Vec<Measured>,
-}
-
-/// A segment with what measuring distances to it needs.
-struct Measured {
-    segment: Segment,
-    start: Point,
-    end: Point,
-}
-
-impl Measured {
-    fn new(segment: Segment) -> Measured {
-        Measured {
-            segment,
-            start: segment.start(),
-            end: segment.end(),
-        }
-    }
-
-    /// Distance from `p`: [`distance_from_segment`](super::distance_from_segment), with the arc's ends known.
-    fn distance(&self, p: Point) -> f64 {
-        match &self.segment {
-            Segment::Line(l) => line_point_distance(l, p),
-            Segment::Arc(a) => arc_point_distance_with_ends(a, self.start, self.end, p),
-        }
-    }
+    segments: Vec<Segment>,
 }
 
 impl SegmentIndex {
@@ -223,7 +197,7 @@ impl SegmentIndex {
         let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
         SegmentIndex {
             tree: PackedTree::new(&boxes),
-            segments: segments.iter().map(|s| Measured::new(*s)).collect(),
+            segments: segments.to_vec(),
         }
     }
 
@@ -245,14 +219,14 @@ impl SegmentIndex {
         }
         if let Some(m) = last.and_then(|i| self.segments.get(i)) {
             *work += 1;
-            if m.distance(p) < r {
+            if distance_from_segment(m, p) < r {
                 return true;
             }
         }
         let r2 = r * r;
         let found = self.tree.search(|b| b.distance_sq(p) <= r2).find(|&i| {
             *work += 1;
-            self.segments[i].distance(p) < r
+            distance_from_segment(&self.segments[i], p) < r
         });
         if found.is_some() {
             *last = found;
@@ -278,7 +252,7 @@ impl SegmentIndex {
         let query = s.bbox().inflated(r);
         self.tree
             .search(|b| b.intersects(&query))
-            .any(|i| segment_distance(&self.segments[i].segment, s, eps).0 < r)
+            .any(|i| segment_distance(&self.segments[i], s, eps).0 < r)
     }
 
     /// The nearest segment to the segment `s` if one is nearer than `limit`: the distance and
@@ -288,7 +262,7 @@ impl SegmentIndex {
         self.tree
             .search(|b| b.intersects(&query))
             .map(|i| {
-                let (d, on_s, _) = segment_distance(s, &self.segments[i].segment, eps);
+                let (d, on_s, _) = segment_distance(s, &self.segments[i], eps);
                 (d, on_s)
             })
             .filter(|(d, _)| *d < limit)
@@ -306,45 +280,20 @@ impl SegmentIndex {
     /// ```
     pub fn nearest(&self, p: Point) -> Option<(Point, f64)> {
         self.tree
-            .nearest(|b| b.distance_sq(p).sqrt(), |i| self.segments[i].distance(p))
-            .map(|(i, d)| (super::closest_point(&self.segments[i].segment, p), d))
+            .nearest(
+                |b| b.distance_sq(p).sqrt(),
+                |i| distance_from_segment(&self.segments[i], p),
+            )
+            .map(|(i, d)| (super::closest_point(&self.segments[i], p), d))
     }
 
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
         self.tree
-            .nearest(|b| b.distance_sq(p).sqrt(), |i| self.segments[i].distance(p))
+            .nearest(
+                |b| b.distance_sq(p).sqrt(),
+                |i| distance_from_segment(&self.segments[i], p),
+            )
             .map_or(f64::INFINITY, |(_, d)| d)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geom::{distance_from_segment, Arc, Vector};
-    use std::f64::consts::{PI, TAU};
-
-    /// The sign tests agree with the angle test of [`distance_from_segment`] all round arcs of every
-    /// kind of sweep, both ways.
-    #[test]
-    fn measured_distance_matches_point_distance() {
-        let c = Point::new(3.0, -2.0);
-        for &sweep in &[0.3, 1.5, PI, 4.0, 6.0, TAU, -0.3, -PI, -4.0, -TAU] {
-            for k in 0..12 {
-                let a = Arc::new(c, 2.0, k as f64 * 0.55 - 3.0, sweep);
-                let m = Measured::new(Segment::Arc(a));
-                for j in 0..72 {
-                    let t = j as f64 * TAU / 72.0 + 0.01;
-                    for r in [0.0, 0.5, 2.0, 3.5] {
-                        let p = c + Vector::from_angle(t) * r;
-                        let want = distance_from_segment(&Segment::Arc(a), p);
-                        assert!(
-                            (m.distance(p) - want).abs() < 1e-12,
-                            "sweep {sweep} k {k} j {j} r {r}"
-                        );
-                    }
-                }
-            }
-        }
     }
 }

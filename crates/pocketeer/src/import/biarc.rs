@@ -50,7 +50,7 @@ fn fit_rec(curve: &impl SmoothCurve, t0: f64, t1: f64, tol: f64, depth: u32, out
         .as_ref()
         .is_some_and(|pieces| follows(curve, t0, t1, pieces, target));
     match candidate {
-        Some(pieces) if depth >= MAX_DEPTH || fits => out.extend(pieces.iter().flatten().map(|p| p.segment)),
+        Some(pieces) if depth >= MAX_DEPTH || fits => out.extend(pieces.iter().flatten().copied()),
         None if depth >= MAX_DEPTH => out.push(Segment::Line(Line::new(p0, p1))),
         _ => {
             // Halving: where the first try failed, the error is rarely spread evenly enough for
@@ -79,61 +79,52 @@ fn heading(curve: &impl SmoothCurve, t: f64, toward: f64, p: Point, d: Vector) -
     })
 }
 
-/// One arc or line of a biarc with its end points, known without trigonometry.
-#[derive(Debug, Clone, Copy)]
-pub struct BiarcPiece {
-    /// The arc or line.
-    pub segment: Segment,
-    /// Its start.
-    pub start: Point,
-    /// Its end.
-    pub end: Point,
-}
-
-impl BiarcPiece {
-    /// True when `q` is within `limit` of the piece.
-    fn is_near(&self, q: Point, limit: f64) -> bool {
-        match &self.segment {
-            Segment::Line(l) => line_point_distance(l, q) <= limit,
-            Segment::Arc(a) => {
-                let v = q - a.center();
-                if in_sweep(a.sweep(), self.start - a.center(), self.end - a.center(), v) {
-                    // | |v| − r | ≤ limit without the square root.
-                    let (lo, hi) = ((a.radius() - limit).max(0.0), a.radius() + limit);
-                    let vv = v.length_sq();
-                    vv <= hi * hi && vv >= lo * lo
-                } else {
-                    let ll = limit * limit;
-                    self.start.distance_sq(q) <= ll || self.end.distance_sq(q) <= ll
-                }
+/// True when `q` is within `limit` of the piece `s` of a biarc (sign tests against an arc's
+/// stored ends, squared distances).
+fn is_near(s: &Segment, q: Point, limit: f64) -> bool {
+    match s {
+        Segment::Line(l) => line_point_distance(l, q) <= limit,
+        Segment::Arc(a) => {
+            let v = q - a.center();
+            let (start, end) = (a.start(), a.end());
+            if in_sweep(a.sweep(), start - a.center(), end - a.center(), v) {
+                // | |v| − r | ≤ limit without the square root.
+                let (lo, hi) = ((a.radius() - limit).max(0.0), a.radius() + limit);
+                let vv = v.length_sq();
+                vv <= hi * hi && vv >= lo * lo
+            } else {
+                let ll = limit * limit;
+                start.distance_sq(q) <= ll || end.distance_sq(q) <= ll
             }
         }
     }
+}
 
-    /// The points dividing the piece into `ARC_PROBES` equal parts, ends excluded.
-    fn probes(&self) -> impl Iterator<Item = Point> + '_ {
-        let (center, step) = match &self.segment {
-            Segment::Arc(a) => (a.center(), a.sweep() / ARC_PROBES as f64),
-            Segment::Line(_) => (self.start, 0.0),
-        };
-        let (sin, cos) = step.sin_cos();
-        let mut radial = self.start - center;
-        (1..ARC_PROBES).map(move |k| match &self.segment {
-            Segment::Line(_) => self.start + (self.end - self.start) * (k as f64 / ARC_PROBES as f64),
-            Segment::Arc(_) => {
-                radial = Vector::new(cos * radial.x - sin * radial.y, sin * radial.x + cos * radial.y);
-                center + radial
-            }
-        })
-    }
+/// The points dividing the piece `s` into `ARC_PROBES` equal parts, ends excluded (round an
+/// arc by rotation: one sine and cosine for all of them).
+fn probes(s: &Segment) -> impl Iterator<Item = Point> + '_ {
+    let (start, end) = (s.start(), s.end());
+    let (center, step) = match s {
+        Segment::Arc(a) => (a.center(), a.sweep() / ARC_PROBES as f64),
+        Segment::Line(_) => (start, 0.0),
+    };
+    let (sin, cos) = step.sin_cos();
+    let mut radial = start - center;
+    (1..ARC_PROBES).map(move |k| match s {
+        Segment::Line(_) => start + (end - start) * (k as f64 / ARC_PROBES as f64),
+        Segment::Arc(_) => {
+            radial = Vector::new(cos * radial.x - sin * radial.y, sin * radial.x + cos * radial.y);
+            center + radial
+        }
+    })
 }
 
 /// True when the curve from `t0` to `t1` and the biarc are within `limit` of each other, both
 /// ways: every curve sample near the biarc, and every probe of the biarc near the curve (an
 /// arc may swing out and back between samples near it). The cheaper way first: most failed
 /// fits fail there.
-fn follows(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Option<BiarcPiece>; 2], limit: f64) -> bool {
-    let pieces: Vec<&BiarcPiece> = pieces.iter().flatten().collect();
+fn follows(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Option<Segment>; 2], limit: f64) -> bool {
+    let pieces: Vec<&Segment> = pieces.iter().flatten().collect();
     let mut samples = [(0.0, Point::ORIGIN); SAMPLES + 1];
     for (i, s) in samples.iter_mut().enumerate() {
         let t = t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
@@ -144,14 +135,14 @@ fn follows(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Option<BiarcPie
     for &(_, p) in &samples {
         match (0..pieces.len())
             .map(|k| (near + k) % pieces.len())
-            .find(|&k| pieces[k].is_near(p, limit))
+            .find(|&k| is_near(pieces[k], p, limit))
         {
             Some(k) => near = k,
             None => return false,
         }
     }
     let mut nearest = 0;
-    pieces.iter().flat_map(|piece| piece.probes()).all(|q| {
+    pieces.iter().flat_map(|&piece| probes(piece)).all(|q| {
         nearest = nearest_sample(&samples, q, nearest);
         is_near_curve(curve, &samples, nearest, q, limit)
     })
@@ -216,7 +207,7 @@ fn is_near_curve(curve: &impl SmoothCurve, samples: &[(f64, Point)], i: usize, q
 
 /// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`):
 /// its one or two pieces, a piece of zero length left out.
-pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<BiarcPiece>; 2]> {
+pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Segment>; 2]> {
     let v = p1 - p0;
     let vv = v.length_sq();
     if vv == 0.0 {
@@ -227,12 +218,7 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Bia
     let d = if denom.abs() < 1e-12 {
         // Parallel end tangents: a straight piece, or the symmetric S-curve.
         if v.cross(t0).abs() <= 1e-12 * vv.sqrt() && v.dot(t0) > 0.0 {
-            let line = BiarcPiece {
-                segment: Segment::Line(Line::new(p0, p1)),
-                start: p0,
-                end: p1,
-            };
-            return Some([Some(line), None]);
+            return Some([Some(Segment::Line(Line::new(p0, p1))), None]);
         }
         let vt = v.dot(t1);
         if vt.abs() < 1e-300 {
@@ -250,11 +236,11 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Bia
         0.5 * (p0.x + p1.x + d * (t0.x - t1.x)),
         0.5 * (p0.y + p1.y + d * (t0.y - t1.y)),
     );
-    let piece =
-        |segment: Segment, start, end| (segment.length() > 0.0).then_some(BiarcPiece { segment, start, end });
+    // The arcs keep p0, j and p1 as their ends (see `Arc::from_center`).
+    let piece = |segment: Segment| (segment.length() > 0.0).then_some(segment);
     let first = arc_from_tangent(p0, t0, j)?;
     let second = arc_from_tangent(p1, -t1, j)?.reversed();
-    Some([piece(first, p0, j), piece(second, j, p1)])
+    Some([piece(first), piece(second)])
 }
 
 /// The arc (or line) that leaves `p` along unit tangent `t` and ends at `q`.
@@ -299,12 +285,11 @@ mod tests {
         let (p0, t0) = (Point::new(0.0, 0.0), Vector::new(1.0, 0.0));
         let (p1, t1) = (Point::new(10.0, 3.0), Vector::new(0.0, 1.0));
         let pieces = biarc(p0, t0, p1, t1).unwrap();
-        let segs: Vec<Segment> = pieces.iter().flatten().map(|p| p.segment).collect();
+        let segs: Vec<Segment> = pieces.iter().flatten().copied().collect();
         assert_eq!(segs.len(), 2);
-        for p in pieces.iter().flatten() {
-            assert!(p.segment.start().distance(p.start) < 1e-12);
-            assert!(p.segment.end().distance(p.end) < 1e-12);
-        }
+        // The pieces keep the points they were made through as their ends.
+        assert!(segs[0].start().distance(p0) < 1e-12 && segs[1].end().distance(p1) < 1e-12);
+        assert!(segs[0].end().distance(segs[1].start()) < 1e-12);
         assert!(segs[0].start().distance(p0) < 1e-9 && segs[1].end().distance(p1) < 1e-9);
         assert!(segs[0].end().distance(segs[1].start()) < 1e-9);
         assert!((segs[0].tangent_at(0.0) - t0).length() < 1e-9);

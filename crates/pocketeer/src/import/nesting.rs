@@ -82,14 +82,14 @@ pub fn find_pockets(
     let (simple, origin) = simplified(contours, layer_names, tol, fill, &mut warnings)?;
     let drawn = contours.len();
     let contours = &simple[..];
-    let meetings = Meetings::find(contours, tol);
+    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    let meetings = Meetings::find(contours, &contour_boxes, tol);
     let crossing: HashSet<(usize, usize)> = meetings
         .crossings
         .iter()
         .map(|&(a, b, _)| (a.min(b), a.max(b)))
         .collect();
     let locator = Locator::new(contours.iter().map(|c| &c.contour).collect());
-    let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
     let contour_index = BoxIndex::new(&contour_boxes);
     let depths = nesting_depths(
         contours,
@@ -192,13 +192,10 @@ struct Meetings {
 }
 
 impl Meetings {
-    fn find(contours: &[ChainedContour], tol: &Tolerance) -> Meetings {
+    fn find(contours: &[ChainedContour], boxes: &[Aabb], tol: &Tolerance) -> Meetings {
         // Only contours whose boxes overlap another's can meet it: the segments of the others
         // (most contours, in traced art and on island plates) stay out of the segment index.
-        let contour_boxes: Vec<Aabb> = contours
-            .iter()
-            .map(|c| c.contour.bbox().inflated(tol.eps))
-            .collect();
+        let contour_boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(tol.eps)).collect();
         let mut may_meet = vec![false; contours.len()];
         for (a, b) in overlapping_pairs(&contour_boxes) {
             may_meet[a] = true;
@@ -514,14 +511,16 @@ fn assemble(loops: Vec<Contour>, tol: &Tolerance, warnings: &mut Vec<ImportWarni
     // Largest first; the area is a pass over the boundary, computed once per pocket.
     let mut by_area: Vec<(f64, Contour)> = outer.into_iter().map(|b| (b.signed_area(), b)).collect();
     by_area.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut pockets: Vec<Pocket> = by_area
+    let (areas, mut pockets): (Vec<f64>, Vec<Pocket>) = by_area
         .into_iter()
-        .map(|(_, boundary)| Pocket {
-            boundary,
-            islands: Vec::new(),
+        .map(|(area, boundary)| {
+            let pocket = Pocket {
+                boundary,
+                islands: Vec::new(),
+            };
+            (area, pocket)
         })
-        .collect();
-    let areas: Vec<f64> = pockets.iter().map(|p| p.boundary.signed_area()).collect();
+        .unzip();
     // A hole touching its boundary's extreme reaches it to within rounding, either side.
     let boxes: Vec<Aabb> = pockets
         .iter()

@@ -304,25 +304,27 @@ impl<'a> Linker<'a> {
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
         let leads = item.closed && part.level == 0 && self.plan().allowance > 0.0;
-        // Where the straight move to the next path would come too near a wall, the way round
-        // along the path just cut (the walk then starts where that way arrives).
-        let mut from = self.here();
+        let here = self.here();
+        let mut segments = walk::walk_from(item, here, reverse, self.tol.eps);
+        // Where the tool stays down: whether the straight move to the walk's start comes too
+        // near a wall, and if so the way round along the path just cut (the walk then starts
+        // where that way arrives, and the move across is checked to that start).
+        let mut blocked = None;
         let mut route = None;
         if !enter && self.down && !leads {
-            let q = walk::walk_from(item, from, reverse, self.tol.eps)[0].start();
-            if !self.stays_inside(from, q, part.distance) {
-                if let Some((moves, start)) = self.route_along_last(part, item, q) {
-                    // The move across is to where the walk will start, checked as it is made.
-                    let a = moves.last().map_or(from, Segment::end);
-                    let q = walk::walk_from(item, start, reverse, self.tol.eps)[0].start();
-                    if self.stays_inside(a, q, part.distance) {
+            let near_wall = !self.stays_inside(here, segments[0].start(), part.distance);
+            if near_wall {
+                if let Some((moves, start)) = self.route_along_last(part, item, segments[0].start()) {
+                    let rerouted = walk::walk_from(item, start, reverse, self.tol.eps);
+                    let a = moves.last().map_or(here, Segment::end);
+                    if self.stays_inside(a, rerouted[0].start(), part.distance) {
                         route = Some(moves);
-                        from = start;
+                        segments = rerouted;
                     }
                 }
             }
+            blocked = Some(near_wall);
         }
-        let mut segments = walk::walk_from(item, from, reverse, self.tol.eps);
         if leads {
             let (plan, pocket) = (self.plan(), self.pocket());
             if let Some((lead_in, lead_out)) = lead::leads(
@@ -347,7 +349,7 @@ impl<'a> Linker<'a> {
         } else if enter || !self.down {
             self.retract();
             self.enter(part, &segments);
-        } else if !self.stays_inside(self.here(), q, part.distance) {
+        } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, part.distance)) {
             self.retract();
             self.come_down_near(part, &segments);
         } else {
@@ -370,11 +372,8 @@ impl<'a> Linker<'a> {
         })?;
         let a = moves.last().map_or(here, Segment::end);
         let length: f64 = moves.iter().map(Segment::length).sum::<f64>() + a.distance(b);
-        let (p, t) = (self.params, &self.params.time);
-        let approach = p.feed_height.min(p.safe_z - self.z);
-        let hop = t.hop_seconds(p.safe_z - self.z, here.distance(q), p.safe_z - self.z - approach)
-            + t.feed_seconds(approach, t.plunge_feed);
-        (t.feed_seconds(length, t.feed) < hop).then_some((moves, b))
+        let t = &self.params.time;
+        (t.feed_seconds(length, t.feed) < self.hop_seconds(here.distance(q), self.z)).then_some((moves, b))
     }
 
     /// True when the tool, down at the pass depth, should reach `q` (where `part`, not cut yet
@@ -404,14 +403,21 @@ impl<'a> Linker<'a> {
         let t = &p.time;
         let drop = self.z_top - self.z;
         let entry_length = drop / p.ramp_angle.sin();
-        let approach = p.feed_height.min(p.safe_z - self.z_top);
-        let hop = t.hop_seconds(p.safe_z - self.z, length, p.safe_z - self.z_top - approach)
-            + t.feed_seconds(approach, t.plunge_feed)
-            + t.feed_seconds(
-                entry_length,
-                Feed::Ramp.rate(t.feed, t.plunge_feed, entry_length, drop),
-            );
-        t.feed_seconds(length, t.feed) < hop
+        let entry = t.feed_seconds(
+            entry_length,
+            Feed::Ramp.rate(t.feed, t.plunge_feed, entry_length, drop),
+        );
+        t.feed_seconds(length, t.feed) < self.hop_seconds(length, self.z_top) + entry
+    }
+
+    /// Seconds to retract from the pass depth, go `across` at the safe height and come down
+    /// onto `floor` as [`Linker::descend_to`] does (rapid to the feed height above it, then
+    /// at the plunge feed), a retract's fixed cost included.
+    fn hop_seconds(&self, across: f64, floor: f64) -> f64 {
+        let (p, t) = (self.params, &self.params.time);
+        let approach = (floor + p.feed_height).min(p.safe_z);
+        t.hop_seconds(p.safe_z - self.z, across, p.safe_z - approach)
+            + t.feed_seconds(approach - floor, t.plunge_feed)
     }
 
     /// True when the straight move from `a` to `b` keeps the tool centre at least `d` from
