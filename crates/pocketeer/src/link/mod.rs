@@ -15,12 +15,14 @@
 //! band the part's own loops are about to clear. Other moves retract to the safe height and
 //! come down again where the stock is already cleared, or enter anew.
 
+mod detour;
 mod entry;
 mod lead;
 mod order;
 mod route;
 mod walk;
 
+pub use detour::detour;
 pub use entry::Helix;
 pub use order::{tour, tour_length};
 
@@ -33,6 +35,10 @@ use crate::toolpath::{Feed, Point3, Toolpath};
 /// Longest move at depth through uncut stock from one branch to the next, in tool radii: a
 /// deliberate slot, no wider than the tool, instead of a retract and a new entry.
 pub const MAX_SLOT_LINK_RADII: f64 = 8.0;
+
+/// Spacing of the lattice a way round what is in the way is searched on, in tool radii: fine
+/// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
+const DETOUR_STEP_RADII: f64 = 0.25;
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
 ///
@@ -343,15 +349,22 @@ impl<'a> Linker<'a> {
         if let Some(moves) = route {
             walk::follow(&mut self.path, &moves, self.z);
             self.path.line(Point3::at(q, self.z), Feed::Cut);
-        } else if enter && self.down && self.slot_link(part, q) {
+        } else if let Some(way) = (enter && self.down).then(|| self.slot_link(part, q)).flatten() {
             // A short slot through stock an enclosing part will clear anyway.
-            self.path.line(Point3::at(q, self.z), Feed::Cut);
+            self.feed_through(&way);
         } else if enter || !self.down {
             self.retract();
             self.enter(part, &segments);
         } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, part.distance)) {
-            self.retract();
-            self.come_down_near(part, &segments);
+            // Round what is in the way, inside the part, when faster than going over the top.
+            let hop = self.hop_seconds(here.distance(q), self.z);
+            match self.detour_within(part.distance, q, hop) {
+                Some(way) => self.feed_through(&way),
+                None => {
+                    self.retract();
+                    self.come_down_near(part, &segments);
+                }
+            }
         } else {
             self.path.line(Point3::at(q, self.z), Feed::Cut);
         }
@@ -376,29 +389,17 @@ impl<'a> Linker<'a> {
         (t.feed_seconds(length, t.feed) < self.hop_seconds(here.distance(q), self.z)).then_some((moves, b))
     }
 
-    /// True when the tool, down at the pass depth, should reach `q` (where `part`, not cut yet
-    /// and with nothing inside it cut, starts) by a straight slot at depth rather than a
-    /// retract and a new entry: the slot is at most [`MAX_SLOT_LINK_RADII`] long, lies in the
-    /// region of an enclosing part (at least its distance from every wall: stock that part's
-    /// loops are still to clear, so nothing is cut that the plan would not cut), and takes
-    /// less time than going up, across, down and entering.
-    fn slot_link(&self, part: &Part, q: Point) -> bool {
+    /// The way at depth by which the tool, down at the pass depth, should reach `q` (where
+    /// `part`, not cut yet and with nothing inside it cut, starts) rather than by a retract and
+    /// a new entry: a slot at most [`MAX_SLOT_LINK_RADII`] long, straight or round what is in
+    /// the way, in the region of the part's root (at least its distance from every wall: stock
+    /// the plan clears anyway, so nothing is cut that it would not cut), taking less time than
+    /// going up, across, down and entering. The corners of the way, the last being `q`.
+    fn slot_link(&self, part: &Part, q: Point) -> Option<Vec<Point>> {
         let (plan, p) = (self.plan(), self.params);
-        let here = self.here();
-        let length = here.distance(q);
-        if length > MAX_SLOT_LINK_RADII * plan.tool_radius {
-            return false;
-        }
-        let mut around = part.parent;
-        let inside = loop {
-            match around {
-                Some(i) if self.stays_inside(here, q, plan.parts[i].distance) => break true,
-                Some(i) => around = plan.parts[i].parent,
-                None => break false,
-            }
-        };
-        if !inside {
-            return false;
+        let mut root = part.parent?;
+        while let Some(i) = plan.parts[root].parent {
+            root = i;
         }
         let t = &p.time;
         let drop = self.z_top - self.z;
@@ -407,7 +408,43 @@ impl<'a> Linker<'a> {
             entry_length,
             Feed::Ramp.rate(t.feed, t.plunge_feed, entry_length, drop),
         );
-        t.feed_seconds(length, t.feed) < self.hop_seconds(length, self.z_top) + entry
+        let seconds = self.hop_seconds(self.here().distance(q), self.z_top) + entry;
+        let longest = MAX_SLOT_LINK_RADII * plan.tool_radius;
+        self.detour_within(plan.parts[root].distance, q, seconds)
+            .filter(|way| self.way_length(way) <= longest)
+    }
+
+    /// The way at depth from where the tool is to `q` keeping the tool centre at least `d`
+    /// from every wall (straight where it can, else round what is in the way) that takes less
+    /// than `seconds` at the cutting feed.
+    fn detour_within(&self, d: f64, q: Point, seconds: f64) -> Option<Vec<Point>> {
+        let feed = self.params.time.feed;
+        let longest = if feed > 0.0 {
+            seconds * feed / 60.0
+        } else {
+            f64::INFINITY
+        };
+        let step = DETOUR_STEP_RADII * self.plan().tool_radius;
+        let way = detour(self.here(), q, step, longest, |a, b| self.stays_inside(a, b, d))?;
+        (self.params.time.feed_seconds(self.way_length(&way), feed) < seconds).then_some(way)
+    }
+
+    /// Length of the way from where the tool is through `corners`.
+    fn way_length(&self, corners: &[Point]) -> f64 {
+        let mut last = self.here();
+        let mut total = 0.0;
+        for &c in corners {
+            total += last.distance(c);
+            last = c;
+        }
+        total
+    }
+
+    /// Straight moves at the pass depth at the cutting feed through `corners`.
+    fn feed_through(&mut self, corners: &[Point]) {
+        for &c in corners {
+            self.path.line(Point3::at(c, self.z), Feed::Cut);
+        }
     }
 
     /// Seconds to retract from the pass depth, go `across` at the safe height and come down

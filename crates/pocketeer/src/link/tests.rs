@@ -161,24 +161,6 @@ fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
         assert_no_gouge(&l.toolpath, &prepared);
         l
     };
-    let entries = |l: &Linked| {
-        let mut at = l.toolpath.start;
-        let mut n = 0;
-        for m in &l.toolpath.moves {
-            if matches!(
-                m,
-                Move::Arc {
-                    feed: crate::toolpath::Feed::Ramp,
-                    ..
-                }
-            ) && at.z >= 0.0
-            {
-                n += 1;
-            }
-            at = m.to();
-        }
-        n
-    };
     let (free, dear) = (with(0.0), with(0.5));
     // A slot to the next branch beats a retract and a helix either way.
     for l in [&free, &dear] {
@@ -192,6 +174,50 @@ fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
     // just cut instead of over the top.
     let (r0, r1) = (free.toolpath.stats().retracts, dear.toolpath.stats().retracts);
     assert!(r1 < r0, "{r1} retracts at 0.5 s each, {r0} at none");
+}
+
+/// Helix entries from above the stock (ramping arcs that start at or above the top).
+fn entries(l: &Linked) -> usize {
+    let mut at = l.toolpath.start;
+    let mut n = 0;
+    for m in &l.toolpath.moves {
+        if matches!(
+            m,
+            Move::Arc {
+                feed: crate::toolpath::Feed::Ramp,
+                ..
+            }
+        ) && at.z >= 0.0
+        {
+            n += 1;
+        }
+        at = m.to();
+    }
+    n
+}
+
+#[test]
+fn a_branch_behind_an_island_is_reached_by_a_slot_round_it() {
+    // Two branches either side of a round island: the straight way from one to the other
+    // goes through the island, the way round it is short. One entry, then a slot round.
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 36.0, 26.0),
+        islands: vec![Contour::new(vec![Segment::Arc(
+            crate::geom::Arc::circle(Point::new(18.0, 13.0), 3.0).reversed(),
+        )])],
+    };
+    let (plan, prepared) = planned(&pocket, 2.4);
+    let leaves = plan.parts.iter().filter(|p| p.children.is_empty()).count();
+    assert!(leaves >= 2, "{leaves} leaves");
+    let l = link(
+        &[(&prepared, &plan)],
+        &params(Entry::Helix),
+        &Tolerance::default(),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    assert_eq!(entries(&l), 1);
+    assert_eq!(l.toolpath.stats().retracts, 1, "only the last");
 }
 
 #[test]
