@@ -36,6 +36,9 @@ use crate::toolpath::{Feed, Point3, Toolpath};
 /// deliberate slot, no wider than the tool, instead of a retract and a new entry.
 pub const MAX_SLOT_LINK_RADII: f64 = 8.0;
 
+/// How many of the nearest branches not cut yet are tried for a slot from where the tool is.
+const SLOT_CANDIDATES: usize = 4;
+
 /// Spacing of the lattice a way round what is in the way is searched on, in tool radii: fine
 /// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
 const DETOUR_STEP_RADII: f64 = 0.25;
@@ -261,51 +264,160 @@ impl<'a> Linker<'a> {
         self.path.position().xy()
     }
 
-    /// Cuts the part `n` and everything inside it: each part after the parts inside it, the
-    /// nearest uncut child first. The tree is walked with a stack of its own, not by recursion:
-    /// a pocket thousands of stepovers wide nests as many parts.
+    /// Cuts the part `n` and everything inside it, each part after the parts inside it. Of the
+    /// children not cut yet, the nearest that a slot reaches from where the tool is goes next;
+    /// when none does, an entry is needed, into the nearest child that is not a small leaf
+    /// (see [`Linker::is_small_leaf`]). Small leaves left when only they remain and a sibling
+    /// is cut wait until their parent is cut, and are then cut from the stock it cleared,
+    /// without entries of their own. The tree is walked with a stack of its own, not by
+    /// recursion: a pocket thousands of stepovers wide nests as many parts.
     fn cut(&mut self, n: usize) {
         let plan = self.plan();
-        // Each entry: a part, and its children not cut yet.
-        let mut stack: Vec<(usize, Vec<usize>)> = vec![(n, plan.parts[n].children.clone())];
-        while let Some((part, children)) = stack.last_mut() {
-            if children.is_empty() {
-                let part = *part;
-                stack.pop();
-                self.cut_part(part);
+        let mut stack = vec![Visit::new(n, plan)];
+        while let Some(visit) = stack.last_mut() {
+            if visit.before.is_empty() {
+                let Visit {
+                    part, after, cut_any, ..
+                } = stack.pop().unwrap_or_else(|| unreachable!());
+                let children = &plan.parts[part].children;
+                let cut: Vec<usize> = children.iter().copied().filter(|c| !after.contains(c)).collect();
+                let reach = Reach {
+                    distance: plan.parts[part].distance,
+                    cut: &cut,
+                };
+                self.cut_part(part, !cut_any, reach);
+                self.cut_small_leaves(part, after);
                 continue;
             }
-            let here = self.here();
-            let k = nearest(children, |&c| {
-                let b = plan.parts[c].outer.bbox();
-                b.min.midpoint(b.max).distance(here)
-            });
-            let c = children.swap_remove(k);
-            stack.push((c, plan.parts[c].children.clone()));
+            let c = match self.next_child(&visit.before) {
+                Some(k) => visit.before.swap_remove(k),
+                None if visit.cut_any && visit.before.iter().all(|&c| self.is_small_leaf(c)) => {
+                    // Only small leaves left, none within a slot: cut from the parent's stock.
+                    visit.after.append(&mut visit.before);
+                    continue;
+                }
+                None => {
+                    // An entry is needed: into the nearest child that is not a small leaf
+                    // (those may still be reached from it by a slot, or from the parent).
+                    let here = self.here();
+                    let key = |c: usize| {
+                        let b = plan.parts[c].outer.bbox();
+                        (self.is_small_leaf(c), b.min.midpoint(b.max).distance(here))
+                    };
+                    let k = (0..visit.before.len())
+                        .min_by(|&x, &y| {
+                            let (kx, ky) = (key(visit.before[x]), key(visit.before[y]));
+                            kx.0.cmp(&ky.0).then(kx.1.total_cmp(&ky.1))
+                        })
+                        .unwrap_or(0);
+                    visit.before.swap_remove(k)
+                }
+            };
+            visit.cut_any = true;
+            stack.push(Visit::new(c, plan));
         }
     }
 
-    /// Cuts the paths of the part `n` itself, its children being cut: clean-up paths and loops
-    /// round islands nearest first, the outer loop last.
-    fn cut_part(&mut self, n: usize) {
+    /// Which of `children` (not cut yet) to cut next without an entry: of the nearest few,
+    /// the nearest a slot reaches from where the tool is; none when no slot reaches them.
+    fn next_child(&self, children: &[usize]) -> Option<usize> {
+        let plan = self.plan();
+        let here = self.here();
+        let mut by_distance: Vec<(f64, usize)> = (children.iter().enumerate())
+            .map(|(k, &c)| {
+                let b = plan.parts[c].outer.bbox();
+                (b.min.midpoint(b.max).distance(here), k)
+            })
+            .collect();
+        by_distance.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if !self.down {
+            return None;
+        }
+        (by_distance.iter().take(SLOT_CANDIDATES))
+            .find(|&&(_, k)| self.slot_to(children[k]).is_some())
+            .map(|&(_, k)| k)
+    }
+
+    /// The slot that would reach the part `n`, not cut yet, from where the tool is (see
+    /// [`Linker::slot_link`]); none when the tool is not down.
+    fn slot_to(&self, n: usize) -> Option<Vec<Point>> {
+        if !self.down {
+            return None;
+        }
+        let part = &self.plan().parts[n];
+        let reverse = self.params.direction == Direction::Conventional;
+        let walk = walk::walk_from(
+            &loop_path(&part.outer.segments),
+            self.here(),
+            reverse,
+            self.tol.eps,
+        );
+        self.slot_link(part, walk.first()?.start())
+    }
+
+    /// True when the part `n` is a small leaf: nothing inside it, no island, and its loop
+    /// within a square of the tool's diameter, so that every point inside the loop is within
+    /// the tool radius of it: the loop alone clears what its parent leaves there.
+    fn is_small_leaf(&self, n: usize) -> bool {
+        let plan = self.plan();
+        let part = &plan.parts[n];
+        let b = part.outer.bbox();
+        let d = 2.0 * plan.tool_radius;
+        part.parent.is_some()
+            && part.children.is_empty()
+            && part.holes.is_empty()
+            && b.max.x - b.min.x <= d
+            && b.max.y - b.min.y <= d
+    }
+
+    /// Cuts the small leaves of `parent`, just cut, nearest first: each reached at depth
+    /// through the parent's region (cleared but for the leaves' own small remains).
+    fn cut_small_leaves(&mut self, parent: usize, mut leaves: Vec<usize>) {
+        let plan = self.plan();
+        let cut = [parent];
+        let reach = Reach {
+            distance: plan.parts[parent].distance,
+            cut: &cut,
+        };
+        while !leaves.is_empty() {
+            let here = self.here();
+            let k = nearest(&leaves, |&c| {
+                walk::distance_to(&loop_path(&plan.parts[c].outer.segments), here)
+            });
+            let leaf = &plan.parts[leaves.swap_remove(k)];
+            self.cut_path(leaf, &loop_path(&leaf.outer.segments), false, reach);
+            let mut items = leaf.cleanups.clone();
+            while !items.is_empty() {
+                let here = self.here();
+                let k = nearest(&items, |p| walk::distance_to(p, here));
+                let item = items.swap_remove(k);
+                self.cut_path(leaf, &item, false, reach);
+            }
+        }
+    }
+
+    /// Cuts the paths of the part `n` itself, what goes before it being cut (`first` when
+    /// nothing inside it is): clean-up paths and loops round islands nearest first, the outer
+    /// loop last.
+    fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
         let part = &self.plan().parts[n];
         let mut items: Vec<Path> = part.cleanups.clone();
         items.extend(part.holes.iter().map(|h| loop_path(&h.segments)));
-        let mut first = part.children.is_empty();
         while !items.is_empty() {
             let here = self.here();
             // The outer loop goes last, at the wall of the part.
             let k = nearest(&items, |p| walk::distance_to(p, here));
             let item = items.swap_remove(k);
-            self.cut_path(part, &item, first);
+            self.cut_path(part, &item, first, reach);
             first = false;
         }
-        self.cut_path(part, &loop_path(&part.outer.segments), first);
+        self.cut_path(part, &loop_path(&part.outer.segments), first, reach);
     }
 
     /// Cuts one loop or clean-up path of `part`; `enter` when the tool comes to it through
-    /// uncut stock (the first path of a part with nothing inside it).
-    fn cut_path(&mut self, part: &Part, item: &Path, enter: bool) {
+    /// uncut stock (the first path of a part with nothing inside it), else reached at depth
+    /// within `reach`.
+    fn cut_path(&mut self, part: &Part, item: &Path, enter: bool, reach: Reach) {
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
@@ -318,12 +430,13 @@ impl<'a> Linker<'a> {
         let mut blocked = None;
         let mut route = None;
         if !enter && self.down && !leads {
-            let near_wall = !self.stays_inside(here, segments[0].start(), part.distance);
+            let near_wall = !self.stays_inside(here, segments[0].start(), reach.distance);
             if near_wall {
-                if let Some((moves, start)) = self.route_along_last(part, item, segments[0].start()) {
+                if let Some((moves, start)) = self.route_along_last(reach.distance, item, segments[0].start())
+                {
                     let rerouted = walk::walk_from(item, start, reverse, self.tol.eps);
                     let a = moves.last().map_or(here, Segment::end);
-                    if self.stays_inside(a, rerouted[0].start(), part.distance) {
+                    if self.stays_inside(a, rerouted[0].start(), reach.distance) {
                         route = Some(moves);
                         segments = rerouted;
                     }
@@ -355,14 +468,14 @@ impl<'a> Linker<'a> {
         } else if enter || !self.down {
             self.retract();
             self.enter(part, &segments);
-        } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, part.distance)) {
+        } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, reach.distance)) {
             // Round what is in the way, inside the part, when faster than going over the top.
             let hop = self.hop_seconds(here.distance(q), self.z);
-            match self.detour_within(part.distance, q, hop) {
+            match self.detour_within(reach.distance, q, hop, f64::INFINITY) {
                 Some(way) => self.feed_through(&way),
                 None => {
                     self.retract();
-                    self.come_down_near(part, &segments);
+                    self.come_down_near(part, reach, &segments);
                 }
             }
         } else {
@@ -377,11 +490,11 @@ impl<'a> Linker<'a> {
     /// straight across, staying the part's distance from every wall (see [`route::along_last`]),
     /// when it takes less time than a retract and coming down near `q`, the start the straight
     /// move would have had.
-    fn route_along_last(&self, part: &Part, item: &Path, q: Point) -> Option<(Vec<Segment>, Point)> {
+    fn route_along_last(&self, distance: f64, item: &Path, q: Point) -> Option<(Vec<Segment>, Point)> {
         let (walk, closed) = (&self.last.0, self.last.1);
         let here = self.here();
         let (moves, b) = route::along_last(walk, closed, item, self.tol.eps, |a, b| {
-            self.stays_inside(a, b, part.distance)
+            self.stays_inside(a, b, distance)
         })?;
         let a = moves.last().map_or(here, Segment::end);
         let length: f64 = moves.iter().map(Segment::length).sum::<f64>() + a.distance(b);
@@ -410,19 +523,18 @@ impl<'a> Linker<'a> {
         );
         let seconds = self.hop_seconds(self.here().distance(q), self.z_top) + entry;
         let longest = MAX_SLOT_LINK_RADII * plan.tool_radius;
-        self.detour_within(plan.parts[root].distance, q, seconds)
-            .filter(|way| self.way_length(way) <= longest)
+        self.detour_within(plan.parts[root].distance, q, seconds, longest)
     }
 
     /// The way at depth from where the tool is to `q` keeping the tool centre at least `d`
-    /// from every wall (straight where it can, else round what is in the way) that takes less
-    /// than `seconds` at the cutting feed.
-    fn detour_within(&self, d: f64, q: Point, seconds: f64) -> Option<Vec<Point>> {
+    /// from every wall (straight where it can, else round what is in the way), at most
+    /// `longest` long, that takes less than `seconds` at the cutting feed.
+    fn detour_within(&self, d: f64, q: Point, seconds: f64, longest: f64) -> Option<Vec<Point>> {
         let feed = self.params.time.feed;
         let longest = if feed > 0.0 {
-            seconds * feed / 60.0
+            longest.min(seconds * feed / 60.0)
         } else {
-            f64::INFINITY
+            longest
         };
         let step = DETOUR_STEP_RADII * self.plan().tool_radius;
         let way = detour(self.here(), q, step, longest, |a, b| self.stays_inside(a, b, d))?;
@@ -497,27 +609,29 @@ impl<'a> Linker<'a> {
         self.path.line(Point3::at(p, floor), Feed::Plunge);
     }
 
-    /// Back down after a retract within a part whose inside is already cut: straight down onto
-    /// the nearest cut path, then across; a new entry when no such way stays inside.
-    fn come_down_near(&mut self, part: &Part, segments: &[Segment]) {
+    /// Back down after a retract to start `segments` of `part`: straight down onto the nearest
+    /// loop of the parts `reach` says are cut or onto the walk just cut, then across; a new entry when no such way stays
+    /// inside.
+    fn come_down_near(&mut self, part: &Part, reach: Reach, segments: &[Segment]) {
         let plan = self.plan();
         let q = segments[0].start();
         let mut best: Option<(Point, f64)> = None;
-        for &c in &part.children {
-            let child = &plan.parts[c];
-            for l in child.loops() {
-                for s in &l.segments {
-                    let p = crate::geom::closest_point(s, q);
-                    let d = p.distance(q);
-                    if best.is_none_or(|(_, bd)| d < bd) {
-                        best = Some((p, d));
-                    }
-                }
+        // The loops of the parts cut, and the walk just cut (the tool was down at this pass's
+        // depth before the retract, so that walk is at it too).
+        let cut = (reach.cut.iter())
+            .flat_map(|&c| plan.parts[c].loops())
+            .flat_map(|l| &l.segments)
+            .chain(&self.last.0);
+        for s in cut {
+            let p = crate::geom::closest_point(s, q);
+            let d = p.distance(q);
+            if best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((p, d));
             }
         }
         match best {
-            Some((p, _)) if self.stays_inside(p, q, part.distance) => {
-                // The child's loop was cut at this pass's depth: down onto its floor.
+            Some((p, _)) if self.stays_inside(p, q, reach.distance) => {
+                // That loop was cut at this pass's depth: down onto its floor.
                 self.descend_to(p, self.z);
                 self.path.line(Point3::at(q, self.z), Feed::Cut);
             }
@@ -604,6 +718,35 @@ impl<'a> Linker<'a> {
         self.descend_to_floor(q);
         self.path.line(Point3::at(q, self.z), Feed::Plunge);
     }
+}
+
+/// A part being cut: the children still to cut before it, the small leaves to cut after it,
+/// and whether any child is cut (if none, its first path is an entry).
+struct Visit {
+    part: usize,
+    before: Vec<usize>,
+    after: Vec<usize>,
+    cut_any: bool,
+}
+
+impl Visit {
+    fn new(part: usize, plan: &ClearPlan) -> Visit {
+        Visit {
+            part,
+            before: plan.parts[part].children.clone(),
+            after: Vec::new(),
+            cut_any: false,
+        }
+    }
+}
+
+/// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
+/// `distance` from every wall (the region of a part whose inside is cut), coming down after a
+/// retract onto a loop of the parts `cut`.
+#[derive(Clone, Copy)]
+struct Reach<'r> {
+    distance: f64,
+    cut: &'r [usize],
 }
 
 /// How far a move may come inside `d` of the walls and still count as keeping `d`: the loops

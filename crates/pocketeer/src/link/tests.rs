@@ -221,6 +221,31 @@ fn a_branch_behind_an_island_is_reached_by_a_slot_round_it() {
 }
 
 #[test]
+fn small_leaves_in_the_corners_of_a_channel_are_cut_without_entries_of_their_own() {
+    // A 10 mm channel round two islands: the levels beyond the first leave a small leaf in
+    // each corner and at each junction, far apart. Entering each would take six helices; cut
+    // after the channel's loops, from the stock they clear, they take none.
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 80.0, 40.0),
+        islands: vec![
+            rect(10.0, 10.0, 35.0, 30.0).reversed(),
+            rect(45.0, 10.0, 70.0, 30.0).reversed(),
+        ],
+    };
+    let (plan, prepared) = planned(&pocket, 2.4);
+    let leaves = plan.parts.iter().filter(|p| p.children.is_empty()).count();
+    assert!(leaves >= 4, "{leaves} leaves");
+    let l = link(
+        &[(&prepared, &plan)],
+        &params(Entry::Helix),
+        &Tolerance::default(),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    assert_eq!(entries(&l), 1);
+}
+
+#[test]
 fn a_slot_too_narrow_for_a_helix_is_entered_by_a_ramp() {
     let pocket = Pocket {
         boundary: rect(0.0, 0.0, 40.0, 6.4),
