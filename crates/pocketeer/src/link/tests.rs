@@ -196,6 +196,22 @@ fn entries(l: &Linked) -> usize {
     n
 }
 
+/// `pocket` linked for a 6 mm tool at 2.4 mm stepover with helix entries, its plan having at
+/// least `leaves` leaves, checked for gouges.
+fn linked_with_leaves(pocket: &Pocket, leaves: usize) -> Linked {
+    let (plan, prepared) = planned(pocket, 2.4);
+    let n = plan.parts.iter().filter(|p| p.children.is_empty()).count();
+    assert!(n >= leaves, "{n} leaves");
+    let l = link(
+        &[(&prepared, &plan)],
+        &params(Entry::Helix),
+        &Tolerance::default(),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    l
+}
+
 #[test]
 fn a_branch_behind_an_island_is_reached_by_a_slot_round_it() {
     // Two branches either side of a round island: the straight way from one to the other
@@ -206,16 +222,7 @@ fn a_branch_behind_an_island_is_reached_by_a_slot_round_it() {
             crate::geom::Arc::circle(Point::new(18.0, 13.0), 3.0).reversed(),
         )])],
     };
-    let (plan, prepared) = planned(&pocket, 2.4);
-    let leaves = plan.parts.iter().filter(|p| p.children.is_empty()).count();
-    assert!(leaves >= 2, "{leaves} leaves");
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
+    let l = linked_with_leaves(&pocket, 2);
     assert_eq!(entries(&l), 1);
     assert_eq!(l.toolpath.stats().retracts, 1, "only the last");
 }
@@ -232,16 +239,7 @@ fn small_leaves_in_the_corners_of_a_channel_are_cut_without_entries_of_their_own
             rect(45.0, 10.0, 70.0, 30.0).reversed(),
         ],
     };
-    let (plan, prepared) = planned(&pocket, 2.4);
-    let leaves = plan.parts.iter().filter(|p| p.children.is_empty()).count();
-    assert!(leaves >= 4, "{leaves} leaves");
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
+    let l = linked_with_leaves(&pocket, 4);
     assert_eq!(entries(&l), 1);
 }
 
