@@ -38,6 +38,10 @@ pub struct CheckArgs {
     /// Also draw the pockets, the swept area and the leftover in this SVG file.
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Also write an interactive preview: one self-contained HTML page with the drawing, the
+    /// program, the gouges and leftovers marked and numbered, and the report.
+    #[arg(long)]
+    preview: Option<PathBuf>,
 }
 
 /// The outcome: the report passed (exit 0) or found defects (exit 1).
@@ -70,9 +74,14 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
             args.retract_time
         )));
     }
+    let mut outputs = Vec::new();
     if let Some(svg) = &args.svg {
-        output::guard(&[&args.drawing.file, &args.program], &[("--svg", svg)]).map_err(Failure)?;
+        outputs.push(("--svg", svg.as_path()));
     }
+    if let Some(page) = &args.preview {
+        outputs.push(("--preview", page.as_path()));
+    }
+    output::guard(&[&args.drawing.file, &args.program], &outputs).map_err(Failure)?;
     let analysis = read_analysis(&args.drawing)?;
     let name = args.program.display();
     let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
@@ -91,6 +100,23 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     if let Some(path) = &args.svg {
         output::write_atomic(path, preview(&analysis, &program, &report).as_bytes()).map_err(Failure)?;
     }
+    if let Some(path) = &args.preview {
+        let context = crate::page::Context {
+            title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.program)),
+            tool_diameter: args.tool_diameter,
+            inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
+            rapid_rate: args.rapid_rate,
+            per_retract: args.retract_time,
+            settings: Vec::new(),
+            too_narrow: (0..report.pockets.len())
+                .filter(|&i| report.pockets[i].reachable_area <= 0.0)
+                .collect(),
+            check: Some(&report),
+            report: to_text(&report, &params),
+        };
+        let doc = crate::page::html(&analysis, &program, &context);
+        output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
+    }
     let text = if args.json {
         let mut t =
             serde_json::to_string_pretty(&report).map_err(|e| Failure(format!("cannot write JSON: {e}")))?;
@@ -105,6 +131,12 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     } else {
         Verdict::Failed
     })
+}
+
+fn file_name(p: &std::path::Path) -> String {
+    p.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 fn place(p: &Option<pocketeer::simulate::check::Place>) -> String {

@@ -5,9 +5,11 @@ mod display;
 mod inspect;
 mod length;
 mod output;
+mod page;
 mod pocket;
 mod preview;
 mod sanity;
+mod view;
 
 use clap::{Args, Parser, Subcommand};
 use pocketeer::import::{FillRule, Units};
@@ -38,6 +40,10 @@ enum Command {
     /// plunges, time.
     #[command(allow_negative_numbers = true)]
     Check(check::CheckArgs),
+    /// Write an interactive preview of any G-code program over its drawing: one
+    /// self-contained HTML page (zoom, pan, a play slider, moves by kind, the summary).
+    #[command(allow_negative_numbers = true)]
+    View(view::ViewArgs),
 }
 
 /// How to read a drawing (shared by every command that reads one).
@@ -247,6 +253,7 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect(args),
         Command::Offset(args) => offset(args),
         Command::Pocket(args) => pocket::run(args),
+        Command::View(args) => view::run(args),
         Command::Check(args) => match check::run(args) {
             Ok(check::Verdict::Passed) => Ok(()),
             // Defects found: the report says which; exit 1 (2 is for errors).

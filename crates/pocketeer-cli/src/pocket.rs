@@ -101,6 +101,10 @@ pub struct PocketArgs {
     /// Also draw the drawing, the loops and the tool path in this SVG file.
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Also write an interactive preview: one self-contained HTML page with the drawing, the
+    /// program (play slider, moves by kind, the tool at its true size) and the summary.
+    #[arg(long)]
+    preview: Option<PathBuf>,
     /// Replay the program against the drawing before writing it (as `pocketeer check` does)
     /// and refuse to write it when it gouges or leaves material.
     #[arg(long)]
@@ -392,18 +396,30 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     let passes = pocketeer::link::pass_depths(s.depth, s.step_down).len();
     let header = header(args, &s, &analysis, loops, passes, &figures);
     let program = write_gcode(&job.linked.toolpath, &s.program(args, header), s.dialect);
-    if args.check {
-        self_check(args, &s, &analysis, &program)?;
-    }
+    let report = if args.check {
+        Some(self_check(args, &s, &analysis, &program)?)
+    } else {
+        None
+    };
     if let Some(path) = &args.svg {
         let doc = preview(&analysis, &job);
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
-    output::write_output(&args.output, program.as_bytes()).map_err(Failure)?;
     let mut after: Vec<String> = (job.linked.warnings.iter().map(ToString::to_string))
         .chain(job.warnings.iter().map(ToString::to_string))
         .collect();
     after.extend(crate::sanity::time_warning(&analysis, figures.seconds));
+    if let Some(path) = &args.preview {
+        let text = warnings
+            .iter()
+            .chain(&after)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n");
+        let doc = html_preview(args, &s, &analysis, &job, &program, report.as_ref(), text)?;
+        output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
+    }
+    output::write_output(&args.output, program.as_bytes()).map_err(Failure)?;
     crate::print_warnings(&after);
     let u = s.units;
     let extent = &analysis.drawing.extent;
@@ -501,13 +517,68 @@ fn header(
     lines
 }
 
+/// The interactive page of the job: the program read back from its text.
+fn html_preview(
+    args: &PocketArgs,
+    s: &Settings,
+    analysis: &pocketeer::Analysis,
+    job: &pocketeer::job::Job,
+    program: &str,
+    report: Option<&pocketeer::simulate::CheckReport>,
+    text: String,
+) -> Result<String, Failure> {
+    let read = pocketeer::simulate::read_program(program)
+        .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
+    let u = s.units;
+    let passes = pocketeer::link::pass_depths(s.depth, s.step_down).len();
+    let loops: usize = job.plans.iter().map(|p| p.loop_count()).sum();
+    let settings = vec![
+        ("stepover".to_string(), u.length(s.stepover)),
+        (
+            "depth".to_string(),
+            format!("{} in {}", u.length(s.depth), count(passes, "pass", "passes")),
+        ),
+        (
+            "feed".to_string(),
+            format!("{}, plunge {}", u.rate(s.feed), u.rate(s.plunge_feed)),
+        ),
+        (
+            "pockets".to_string(),
+            format!(
+                "{}, {}",
+                analysis.nesting.pockets.len(),
+                count(loops, "loop", "loops")
+            ),
+        ),
+    ];
+    let too_narrow = job
+        .warnings
+        .iter()
+        .map(|w| match w {
+            pocketeer::job::JobWarning::TooNarrow { pocket, .. } => *pocket,
+        })
+        .collect();
+    let context = crate::page::Context {
+        title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.output)),
+        tool_diameter: s.diameter,
+        inches: u == JobUnits::Inches,
+        rapid_rate: s.rapid_rate,
+        per_retract: args.retract_time,
+        settings,
+        too_narrow,
+        check: report,
+        report: text,
+    };
+    Ok(crate::page::html(analysis, &read, &context))
+}
+
 /// Replays the program against the drawing; refuses to write it when the check fails.
 fn self_check(
     args: &PocketArgs,
     s: &Settings,
     analysis: &pocketeer::Analysis,
     program: &str,
-) -> Result<(), Failure> {
+) -> Result<pocketeer::simulate::CheckReport, Failure> {
     let name = args.drawing.file.display();
     let params = pocketeer::simulate::CheckParams {
         tool_radius: 0.5 * s.diameter,
@@ -524,7 +595,7 @@ fn self_check(
             .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
     eprint!("{}", crate::check::to_text(&report, &params));
     if report.passed {
-        return Ok(());
+        return Ok(report);
     }
     Err(Failure(format!(
         "{name}: the check failed (gouge {:.4} mm, thickest leftover {:.4} mm); {} not written",
@@ -540,6 +611,9 @@ fn guard_outputs(args: &PocketArgs) -> Result<(), Failure> {
     let mut outputs = vec![("-o", args.output.as_path())];
     if let Some(svg) = &args.svg {
         outputs.push(("--svg", svg.as_path()));
+    }
+    if let Some(page) = &args.preview {
+        outputs.push(("--preview", page.as_path()));
     }
     output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
     let dxf = args

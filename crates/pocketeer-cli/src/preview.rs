@@ -43,7 +43,7 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
 }
 
 /// The elements of the open chains ignored under `--ignore-open`, one path each.
-fn ignored_open_chains(a: &Analysis) -> Vec<Vec<Segment>> {
+pub fn ignored_open_chains(a: &Analysis) -> Vec<Vec<Segment>> {
     a.chains
         .open
         .iter()

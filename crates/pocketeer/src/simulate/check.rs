@@ -210,21 +210,19 @@ impl CheckReport {
 
     /// Counts a rapid's length, time and whether it retracts.
     fn tally_rapid(&mut self, m: &ProgramMove, rapid_rate: f64, per_retract: f64) {
-        let len = m.length();
-        self.rapid_length += len;
-        self.seconds += 60.0 * len / rapid_rate;
+        self.rapid_length += m.length();
+        self.seconds += m.seconds(rapid_rate, per_retract);
         if m.to.z > m.from.z {
             self.retracts += 1;
-            self.seconds += per_retract;
         }
     }
 
     /// Counts a feed move's length and time, or notes that it has no feed rate.
     fn tally_feed(&mut self, m: &ProgramMove) {
-        let len = m.length();
-        self.cut_length += len;
+        self.cut_length += m.length();
+        self.seconds += m.seconds(0.0, 0.0);
         match m.feed {
-            Some(f) if f > 0.0 => self.seconds += 60.0 * len / f,
+            Some(f) if f > 0.0 => {}
             _ => self.feedless.push(Place {
                 x: m.to.x,
                 y: m.to.y,

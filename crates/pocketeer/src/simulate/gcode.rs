@@ -101,6 +101,26 @@ impl ProgramMove {
         }
     }
 
+    /// Seconds the move takes in the time model of [`crate::machining_time`]: a feed move its
+    /// length at its feed (none without a feed), a rapid its length at `rapid_rate` (mm/min),
+    /// and a rapid upwards (a retract) `per_retract` on top.
+    ///
+    /// ```
+    /// use pocketeer::simulate::read_program;
+    /// let p = read_program("G0 X0 Y0 Z0\nG1 X10 F600\nG0 Z5\n").unwrap();
+    /// assert_eq!(p.moves[0].seconds(5000.0, 0.5), 1.0);
+    /// assert_eq!(p.moves[1].seconds(6000.0, 0.5), 0.05 + 0.5);
+    /// ```
+    pub fn seconds(&self, rapid_rate: f64, per_retract: f64) -> f64 {
+        let len = self.length();
+        match (self.motion, self.feed) {
+            (Motion::Rapid, _) if self.to.z > self.from.z => 60.0 * len / rapid_rate + per_retract,
+            (Motion::Rapid, _) => 60.0 * len / rapid_rate,
+            (_, Some(f)) if f > 0.0 => 60.0 * len / f,
+            _ => 0.0,
+        }
+    }
+
     /// The path of the move seen from above.
     pub fn footprint(&self) -> crate::geom::Segment {
         use crate::geom::{Arc, Line, Segment};

@@ -7,14 +7,16 @@
 //! reach, rapids into stock, plunges, and the wall-following length by milling side.
 //! `gcode.rs` reads, `polygon.rs` sweeps the tool, `history.rs` remembers what each move
 //! found cut, `side.rs` measures climb against conventional, `engagement.rs` how much of the
-//! tool meets the stock.
+//! tool meets the stock, `classify.rs` what each move does (on the height map of `zmap.rs`).
 
 pub mod check;
+pub mod classify;
 pub mod engagement;
 pub mod gcode;
 mod history;
-mod polygon;
+pub(crate) mod polygon;
 mod side;
+pub mod zmap;
 
 pub use check::{check_program, CheckParams, CheckReport, PocketCheck};
 pub use engagement::Engagement;
