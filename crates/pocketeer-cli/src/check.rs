@@ -98,7 +98,11 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     let report = check_program(&analysis.nesting.pockets, &program, &params, &analysis.tolerance)
         .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
     if let Some(path) = &args.svg {
-        output::write_atomic(path, preview(&analysis, &program, &report).as_bytes()).map_err(Failure)?;
+        output::write_atomic(
+            path,
+            preview(&analysis, &program, &report, args.tool_diameter).as_bytes(),
+        )
+        .map_err(Failure)?;
     }
     if let Some(path) = &args.preview {
         let context = crate::page::Context {
@@ -256,6 +260,7 @@ fn preview(
     analysis: &pocketeer::Analysis,
     program: &pocketeer::simulate::Program,
     report: &CheckReport,
+    diameter: f64,
 ) -> String {
     use pocketeer::export::svg;
     use pocketeer::geom::{Arc, Contour, Point, Segment};
@@ -302,6 +307,10 @@ fn preview(
                 fill: "#9cc3ea",
                 contours: &swept,
                 paths: &[],
+                label: "swept at the final depth",
+                width: 0.0,
+                dash: false,
+                frames: false,
             },
             svg::Layer {
                 name: "path",
@@ -309,6 +318,10 @@ fn preview(
                 fill: "none",
                 contours: &[],
                 paths: &path,
+                label: "feed moves below Z0",
+                width: 0.08 * diameter,
+                dash: false,
+                frames: false,
             },
             svg::Layer {
                 name: "leftover",
@@ -316,6 +329,10 @@ fn preview(
                 fill: "#f08080",
                 contours: &leftover,
                 paths: &[],
+                label: "material left",
+                width: 0.0,
+                dash: false,
+                frames: false,
             },
             svg::Layer {
                 name: "gouge",
@@ -323,6 +340,10 @@ fn preview(
                 fill: "none",
                 contours: &gouges,
                 paths: &[],
+                label: "gouge",
+                width: 0.0,
+                dash: false,
+                frames: false,
             },
             svg::Layer {
                 name: "thickest-leftover",
@@ -330,6 +351,10 @@ fn preview(
                 fill: "none",
                 contours: &thick,
                 paths: &[],
+                label: "thickest leftover",
+                width: 0.0,
+                dash: false,
+                frames: false,
             },
         ],
     )

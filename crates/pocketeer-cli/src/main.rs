@@ -214,6 +214,10 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
                 fill: "none",
                 contours: &loops,
                 paths: &[],
+                label: "offset loops",
+                width: 0.0,
+                dash: false,
+                frames: false,
             }],
         );
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;

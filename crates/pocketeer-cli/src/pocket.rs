@@ -402,7 +402,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         None
     };
     if let Some(path) = &args.svg {
-        let doc = preview(&analysis, &job);
+        let doc = preview(&analysis, &job, s.diameter);
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
     let mut after: Vec<String> = (job.linked.warnings.iter().map(ToString::to_string))
@@ -629,7 +629,7 @@ fn guard_outputs(args: &PocketArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String {
+fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job, diameter: f64) -> String {
     use pocketeer::export::svg;
     let (feeds, rapids) = svg::toolpath_segments(&job.linked.toolpath);
     crate::preview::document(
@@ -641,6 +641,10 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String 
                 fill: "none",
                 contours: &[],
                 paths: &feeds,
+                label: "feed moves (cuts, links, entries)",
+                width: 0.08 * diameter,
+                dash: false,
+                frames: false,
             },
             svg::Layer {
                 name: "rapids",
@@ -648,6 +652,10 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job) -> String 
                 fill: "none",
                 contours: &[],
                 paths: &rapids,
+                label: "rapids",
+                width: 0.05 * diameter,
+                dash: true,
+                frames: false,
             },
         ],
     )

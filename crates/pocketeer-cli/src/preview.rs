@@ -22,6 +22,10 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
             fill: "#dde6f0",
             contours: &walls,
             paths: &[],
+            label: "pocket (islands white)",
+            width: 0.0,
+            dash: false,
+            frames: true,
         },
         svg::Layer {
             name: "ignored-open-chains",
@@ -29,6 +33,10 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
             fill: "none",
             contours: &[],
             paths: &ignored,
+            label: "open chain, ignored",
+            width: 0.0,
+            dash: true,
+            frames: true,
         },
         svg::Layer {
             name: "repairs",
@@ -36,10 +44,14 @@ pub fn document(a: &Analysis, layers: &[svg::Layer]) -> String {
             fill: "none",
             contours: &repaired,
             paths: &[],
+            label: "repaired by the importer",
+            width: 0.0,
+            dash: false,
+            frames: false,
         },
     ];
     all.extend_from_slice(layers);
-    svg::svg_document(&all)
+    svg::svg_document(&all, "mm")
 }
 
 /// The elements of the open chains ignored under `--ignore-open`, one path each.

@@ -298,7 +298,7 @@ function addMove(path, i, penAt) {
   }
   path.lineTo(x1, y1);
 }
-let lastDrawn = 0;
+let lastDrawn = 0, sweptMoves = 0;
 function drawProgram(ctx, upTo) {
   const level = depth.value === "all" ? null : +depth.value;
   const paths = KIND_NAMES.map(() => new Path2D());
@@ -308,6 +308,7 @@ function drawProgram(ctx, upTo) {
   let run = 0, ax = 0, ay = 0;
   let drawn = 0;
   const swept = visible.swept && deepest !== null ? new Path2D() : null;
+  sweptMoves = 0;
   let sweptPen = -1;
   const margin = 20;
   for (let i = 0; i < upTo; i++) {
@@ -315,6 +316,7 @@ function drawProgram(ctx, upTo) {
     if (swept && k !== K_RAPID && k !== K_RETRACT && Math.abs(M.Z[i + 1] - deepest) < 5e-5 && Math.abs(M.Z[i] - deepest) < 5e-5) {
       addMove(swept, i, sweptPen);
       sweptPen = i + 1;
+      sweptMoves++;
     }
     if (!visible[KIND_NAMES[k]]) continue;
     if ((k === K_CUT || k === K_LINK || k === K_ENTRY) && !onLevel(i, level)) continue;
@@ -504,6 +506,36 @@ if (hash === "#selftest") {
   const t0 = performance.now();
   draw();
   const drawMs = performance.now() - t0;
+  // Zoom in with the wheel, drag, fit again; the swept area; one depth pass.
+  const scaleAt = () => document.getElementById("scalelabel").textContent;
+  const fitted = scaleAt();
+  const r = canvas.getBoundingClientRect();
+  canvas.dispatchEvent(new WheelEvent("wheel", { deltaY: -800, clientX: r.left + r.width / 2, clientY: r.top + r.height / 2, cancelable: true }));
+  draw();
+  const zoomed = scaleAt();
+  const before = [cx, cy];
+  canvas.dispatchEvent(new PointerEvent("pointerdown", { clientX: 100, clientY: 100, pointerId: 1 }));
+  canvas.dispatchEvent(new PointerEvent("pointermove", { clientX: 160, clientY: 130, pointerId: 1 }));
+  canvas.dispatchEvent(new PointerEvent("pointerup", { clientX: 160, clientY: 130, pointerId: 1 }));
+  const panned = Math.hypot(cx - before[0], cy - before[1]) * s;
+  fitButton.click();
+  draw();
+  const refitted = scaleAt();
+  const sweptBox = document.querySelector('input[data-layer="swept"]');
+  sweptBox.click();
+  draw();
+  const swept = sweptMoves;
+  sweptBox.click();
+  let passDrawn = null;
+  if (levels.length > 1) {
+    depth.value = String(levels[levels.length - 1]);
+    depth.dispatchEvent(new Event("change"));
+    draw();
+    passDrawn = lastDrawn;
+    depth.value = "all";
+    depth.dispatchEvent(new Event("change"));
+  }
+  draw();
   const out = {
     problems,
     moves: M.n,
@@ -518,6 +550,7 @@ if (hash === "#selftest") {
     resources: performance.getEntriesByType("resource").length,
     readyMs,
     drawMs,
+    fitted, zoomed, refitted, panned, swept, passDrawn, levels,
     marks: D.marks.map((m) => m.kind),
     notCut: D.not_cut,
     inked: inkedShare(),
