@@ -402,6 +402,15 @@ function drawLeftoversAndMarks(ctx) {
     ctx.beginPath(); ctx.arc(x, y, 11, 0, 2 * Math.PI); ctx.stroke();
     ctx.fillStyle = MARK_COLOR[m.kind]; ctx.beginPath(); ctx.arc(x + 12, y - 12, 8, 0, 2 * Math.PI); ctx.fill();
     ctx.fillStyle = "#fff"; ctx.fillText(String(k + 1), x + 12, y - 11.5);
+    if (m.kind === "not-cut") {
+      // Why, on the drawing itself: the part of the text after "not cut: ".
+      const why = "not cut: " + m.text.split("not cut: ").pop();
+      ctx.save();
+      ctx.textAlign = "left"; ctx.font = "12px system-ui, sans-serif";
+      ctx.lineWidth = 3; ctx.strokeStyle = "rgba(255,255,255,0.9)"; ctx.strokeText(why, x + 24, y - 11.5);
+      ctx.fillStyle = MARK_COLOR[m.kind]; ctx.fillText(why, x + 24, y - 11.5);
+      ctx.restore();
+    }
   });
 }
 function drawOrigin(ctx) {
