@@ -14,6 +14,15 @@ impl Post for Grbl {
             format!("T{n}"),
         ]
     }
+    fn tool_change_during(&self, n: u32) -> Vec<String> {
+        // No changer: stop the program (M0) for the machinist to load the tool and press
+        // cycle start.
+        vec![
+            self.comment(&format!("load tool {n}, then press cycle start")),
+            format!("T{n}"),
+            "M0".to_string(),
+        ]
+    }
     fn has_mist(&self) -> bool {
         // M7 only in builds with ENABLE_M7, which the stock firmware is not.
         false

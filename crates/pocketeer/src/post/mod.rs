@@ -178,6 +178,10 @@ trait Post {
     fn tool_change(&self, n: u32) -> Vec<String> {
         change_tool_with_length_offset(n)
     }
+    /// The lines that change to tool `n` in the middle of a program, the spindle stopped.
+    fn tool_change_during(&self, n: u32) -> Vec<String> {
+        self.tool_change(n)
+    }
     /// True when the controller takes M7 (mist coolant).
     fn has_mist(&self) -> bool {
         true
@@ -236,6 +240,59 @@ fn clean(text: &str) -> String {
 /// assert!(g.contains("G1 Z-1.0000 F300\n"));
 /// ```
 pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> String {
+    let one = ToolSection {
+        toolpath: path,
+        tool: s.tool,
+        feed: s.feed,
+        plunge_feed: s.plunge_feed,
+        spindle: s.spindle,
+        remark: String::new(),
+    };
+    write_gcode_tools(&[one], s, dialect)
+}
+
+/// The part of a program one tool cuts: its moves, the tool and its rates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToolSection<'a> {
+    /// The moves, starting above the stock at the safe height.
+    pub toolpath: &'a Toolpath,
+    /// The tool to load (`T n M6`), or none for the tool already in the spindle.
+    pub tool: Option<u32>,
+    /// Cutting feed, mm/min.
+    pub feed: f64,
+    /// Plunge feed, mm/min.
+    pub plunge_feed: f64,
+    /// Spindle speed, rpm.
+    pub spindle: f64,
+    /// A comment written where the section starts (what the tool cuts), or nothing.
+    pub remark: String,
+}
+
+/// Writes the `sections` one after the other as one G-code program for `dialect`, with a
+/// tool change between them: up to the safe height, spindle and coolant off, the change
+/// (`T n M6` and the length offset `G43 H n`; GRBL, which has no changer, stops with `M0` and a
+/// comment naming the tool to load), the spindle on at the new tool's speed and its wait. The
+/// units, safe height, header, wait, coolant and park come from `s` (its tool and rates are
+/// the sections').
+///
+/// ```
+/// use pocketeer::post::{write_gcode_tools, Dialect, ProgramSettings, ToolSection};
+/// use pocketeer::toolpath::{Feed, Point3, Toolpath};
+/// let mut a = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+/// a.rapid(Point3::new(10.0, 0.0, 5.0));
+/// a.line(Point3::new(10.0, 0.0, -1.0), Feed::Plunge);
+/// let b = a.clone();
+/// let section = |path, tool, spindle| ToolSection {
+///     toolpath: path, tool: Some(tool), feed: 1000.0, plunge_feed: 300.0, spindle,
+///     remark: String::new(),
+/// };
+/// let s = ProgramSettings::default();
+/// let g = write_gcode_tools(&[section(&a, 1, 12000.0), section(&b, 2, 18000.0)], &s, Dialect::LinuxCnc);
+/// assert!(g.contains("G0 Z5.0000\nM5\nT2 M6\nG43 H2\nM3 S18000\n"));
+/// let g = write_gcode_tools(&[section(&a, 1, 12000.0), section(&b, 2, 18000.0)], &s, Dialect::Grbl);
+/// assert!(g.contains("M5\n(load tool 2, then press cycle start)\nT2\nM0\nM3 S18000\n"));
+/// ```
+pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect: Dialect) -> String {
     let post = post(dialect);
     let mut w = Writer {
         out: String::new(),
@@ -263,55 +320,78 @@ pub fn write_gcode(path: &Toolpath, s: &ProgramSettings, dialect: Dialect) -> St
     let safe = w.num(s.safe_z);
     w.line(&format!("G0 Z{safe}"));
     w.at[2] = w.quantized(s.safe_z);
-    if let Some(n) = s.tool {
-        for l in post.tool_change(n) {
-            w.line(&l);
-        }
-    }
-    w.line(&format!("M3 S{}", fmt_rate(s.spindle)));
-    if s.spindle_wait > 0.0 {
-        let remark = post
-            .dwell_remark()
-            .map(|r| format!(" {}", post.comment(r)))
-            .unwrap_or_default();
-        w.line(&format!("G4 P{}{remark}", fmt_rate(s.spindle_wait)));
-    }
     // The word that switches the coolant on, where the controller has one: M9 ends it.
     let coolant_on = match s.coolant {
         Coolant::Off => None,
         Coolant::Flood => Some("M8"),
         Coolant::Mist => post.has_mist().then_some("M7"),
     };
-    match coolant_on {
-        Some(word) => w.line(word),
-        None if s.coolant == Coolant::Mist => {
-            w.line(&post.comment("mist coolant asked for: this controller has no M7, switch it on by hand"))
-        }
-        None => {}
-    }
-    let mut from = path.start;
-    for m in &path.moves {
-        match *m {
-            Move::Rapid { to } => w.motion("G0", to, None, ""),
-            Move::Line { to, feed } => {
-                let f = w.feed_word(rate(s, feed, m, from));
-                w.motion("G1", to, None, &f)
-            }
-            Move::Arc {
-                to,
-                center,
-                sweep,
-                feed,
-            } => {
-                let f = w.feed_word(rate(s, feed, m, from));
-                w.arc(from, to, center, sweep, &f)
+    for (k, section) in sections.iter().enumerate() {
+        if k > 0 {
+            // The last section ended at the safe height: the spindle and coolant off.
+            w.line("M5");
+            if coolant_on.is_some() {
+                w.line("M9");
             }
         }
-        from = m.to();
-    }
-    let p = path.position();
-    if p.z < s.safe_z {
-        w.motion("G0", Point3::new(p.x, p.y, s.safe_z), None, "");
+        if !section.remark.is_empty() {
+            w.line(&post.comment(&clean(&section.remark)));
+        }
+        if let Some(n) = section.tool {
+            let lines = if k == 0 {
+                post.tool_change(n)
+            } else {
+                post.tool_change_during(n)
+            };
+            for l in lines {
+                w.line(&l);
+            }
+        }
+        w.line(&format!("M3 S{}", fmt_rate(section.spindle)));
+        if s.spindle_wait > 0.0 {
+            let remark = post
+                .dwell_remark()
+                .map(|r| format!(" {}", post.comment(r)))
+                .unwrap_or_default();
+            w.line(&format!("G4 P{}{remark}", fmt_rate(s.spindle_wait)));
+        }
+        match coolant_on {
+            Some(word) => w.line(word),
+            None if s.coolant == Coolant::Mist && k == 0 => w.line(
+                &post.comment("mist coolant asked for: this controller has no M7, switch it on by hand"),
+            ),
+            None => {}
+        }
+        let rates = ProgramSettings {
+            feed: section.feed,
+            plunge_feed: section.plunge_feed,
+            ..ProgramSettings::default()
+        };
+        let path = section.toolpath;
+        let mut from = path.start;
+        for m in &path.moves {
+            match *m {
+                Move::Rapid { to } => w.motion("G0", to, None, ""),
+                Move::Line { to, feed } => {
+                    let f = w.feed_word(rate(&rates, feed, m, from));
+                    w.motion("G1", to, None, &f)
+                }
+                Move::Arc {
+                    to,
+                    center,
+                    sweep,
+                    feed,
+                } => {
+                    let f = w.feed_word(rate(&rates, feed, m, from));
+                    w.arc(from, to, center, sweep, &f)
+                }
+            }
+            from = m.to();
+        }
+        let p = path.position();
+        if p.z < s.safe_z {
+            w.motion("G0", Point3::new(p.x, p.y, s.safe_z), None, "");
+        }
     }
     w.line("M5");
     if coolant_on.is_some() {
