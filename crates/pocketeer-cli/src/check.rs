@@ -108,6 +108,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         let context = crate::page::Context {
             title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.program)),
             tool_diameter: args.tool_diameter,
+            tool_changes: Vec::new(),
             inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
             rapid_rate: args.rapid_rate,
             per_retract: args.retract_time,

@@ -3,6 +3,8 @@
 mod check;
 mod display;
 mod inspect;
+mod job;
+mod jobfile;
 mod length;
 mod output;
 mod page;
@@ -40,6 +42,9 @@ enum Command {
     /// plunges, time.
     #[command(allow_negative_numbers = true)]
     Check(check::CheckArgs),
+    /// Run a job file: operations on layers, each with a tool of the job's library, in one
+    /// program with the tool changes between them.
+    Job(job::JobArgs),
     /// Write an interactive preview of any G-code program over its drawing: one
     /// self-contained HTML page (zoom, pan, a play slider, moves by kind, the summary).
     #[command(allow_negative_numbers = true)]
@@ -258,6 +263,7 @@ fn main() -> ExitCode {
         Command::Offset(args) => offset(args),
         Command::Pocket(args) => pocket::run(args),
         Command::View(args) => view::run(args),
+        Command::Job(args) => job::run(args),
         Command::Check(args) => match check::run(args) {
             Ok(check::Verdict::Passed) => Ok(()),
             // Defects found: the report says which; exit 1 (2 is for errors).

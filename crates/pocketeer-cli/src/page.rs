@@ -17,8 +17,10 @@ use pocketeer::Analysis;
 pub struct Context<'a> {
     /// Title: drawing and program names.
     pub title: String,
-    /// Tool diameter, mm.
+    /// Tool diameter, mm (the first tool's).
     pub tool_diameter: f64,
+    /// For programs of several tools: from which move each cuts, and its diameter.
+    pub tool_changes: Vec<(usize, f64)>,
     /// Lengths in inches.
     pub inches: bool,
     /// Rapid rate, mm/min, and the cost of a retract, s.
@@ -87,6 +89,7 @@ pub fn html(a: &Analysis, program: &Program, c: &Context) -> String {
         title: c.title.clone(),
         inches: c.inches,
         tool_diameter: c.tool_diameter,
+        tool_changes: c.tool_changes.clone(),
         pockets,
         not_cut,
         open_chains: crate::preview::ignored_open_chains(a),

@@ -522,7 +522,7 @@ fn html_preview(
     args: &PocketArgs,
     s: &Settings,
     analysis: &pocketeer::Analysis,
-    job: &pocketeer::job::Job,
+    job: &pocketeer::job::PocketJob,
     program: &str,
     report: Option<&pocketeer::simulate::CheckReport>,
     text: String,
@@ -561,6 +561,7 @@ fn html_preview(
     let context = crate::page::Context {
         title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.output)),
         tool_diameter: s.diameter,
+        tool_changes: Vec::new(),
         inches: u == JobUnits::Inches,
         rapid_rate: s.rapid_rate,
         per_retract: args.retract_time,
@@ -629,7 +630,7 @@ fn guard_outputs(args: &PocketArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::Job, diameter: f64) -> String {
+fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::PocketJob, diameter: f64) -> String {
     use pocketeer::export::svg;
     let (feeds, rapids) = svg::toolpath_segments(&job.linked.toolpath);
     crate::preview::document(

@@ -53,6 +53,7 @@ pub fn run(args: &ViewArgs) -> Result<(), Failure> {
     let context = crate::page::Context {
         title: format!("{} → {}", name(&args.drawing.file), name(&args.program)),
         tool_diameter: args.tool_diameter,
+        tool_changes: Vec::new(),
         inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
         rapid_rate: args.rapid_rate,
         per_retract: args.retract_time,

@@ -79,5 +79,37 @@ fn main() -> std::io::Result<()> {
     std::fs::create_dir_all("examples")?;
     std::fs::write("examples/bracket.dxf", write_dxf(&drawing, Units::Millimeters))?;
     eprintln!("wrote examples/bracket.dxf");
+    plate()
+}
+
+/// The two-layer plate of `examples/plate.toml`: on SHALLOW, pockets with sharp inner corners
+/// and a slot 4 mm wide (narrower than the 6 mm tool, wider than the 2 mm one); on DEEP, a
+/// pocket with two round islands.
+fn plate() -> std::io::Result<()> {
+    let p = Point::new;
+    let square = Contour::polygon(&[p(10.0, 10.0), p(50.0, 10.0), p(50.0, 40.0), p(10.0, 40.0)]);
+    let ell = Contour::polygon(&[
+        p(60.0, 10.0),
+        p(100.0, 10.0),
+        p(100.0, 22.0),
+        p(74.0, 22.0),
+        p(74.0, 40.0),
+        p(60.0, 40.0),
+    ]);
+    let narrow = slot(35.0, 60.0, 40.0, 2.0);
+    let deep = rounded_rect(80.0, 45.0, 150.0, 95.0, 5.0);
+    let hole = |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::new(p(x, y), 6.0, 0.0, TAU))]);
+    let (island_a, island_b) = (hole(100.0, 70.0), hole(130.0, 70.0));
+    let layered = |layer, contour| LayeredContour { layer, contour };
+    let drawing = [
+        layered("SHALLOW", &square),
+        layered("SHALLOW", &ell),
+        layered("SHALLOW", &narrow),
+        layered("DEEP", &deep),
+        layered("DEEP", &island_a),
+        layered("DEEP", &island_b),
+    ];
+    std::fs::write("examples/plate.dxf", write_dxf(&drawing, Units::Millimeters))?;
+    eprintln!("wrote examples/plate.dxf");
     Ok(())
 }

@@ -95,6 +95,23 @@ pub struct LinkParams {
     pub time: TimeModel,
 }
 
+impl Default for LinkParams {
+    /// 1 mm deep in one pass, a 5 mm safe height, a 1 mm feed height, climb milling, helix
+    /// entries at most 3°, the default time model.
+    fn default() -> LinkParams {
+        LinkParams {
+            depth: 1.0,
+            step_down: 1.0,
+            safe_z: 5.0,
+            feed_height: 1.0,
+            direction: Direction::Climb,
+            entry: Entry::Helix,
+            ramp_angle: 3f64.to_radians(),
+            time: TimeModel::default(),
+        }
+    }
+}
+
 /// Why a tool path cannot be linked: a parameter out of range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LinkError {

@@ -326,8 +326,12 @@ pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect:
         Coolant::Flood => Some("M8"),
         Coolant::Mist => post.has_mist().then_some("M7"),
     };
+    let mut spindle: Option<f64> = None;
     for (k, section) in sections.iter().enumerate() {
-        if k > 0 {
+        // A section with a tool to load starts the spindle again; one with the tool already
+        // in the spindle only changes its speed, where it differs.
+        let start = k == 0 || section.tool.is_some();
+        if k > 0 && start {
             // The last section ended at the safe height: the spindle and coolant off.
             w.line("M5");
             if coolant_on.is_some() {
@@ -347,8 +351,11 @@ pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect:
                 w.line(&l);
             }
         }
-        w.line(&format!("M3 S{}", fmt_rate(section.spindle)));
-        if s.spindle_wait > 0.0 {
+        if start || spindle != Some(section.spindle) {
+            w.line(&format!("M3 S{}", fmt_rate(section.spindle)));
+            spindle = Some(section.spindle);
+        }
+        if start && s.spindle_wait > 0.0 {
             let remark = post
                 .dwell_remark()
                 .map(|r| format!(" {}", post.comment(r)))
@@ -356,11 +363,11 @@ pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect:
             w.line(&format!("G4 P{}{remark}", fmt_rate(s.spindle_wait)));
         }
         match coolant_on {
-            Some(word) => w.line(word),
+            Some(word) if start => w.line(word),
             None if s.coolant == Coolant::Mist && k == 0 => w.line(
                 &post.comment("mist coolant asked for: this controller has no M7, switch it on by hand"),
             ),
-            None => {}
+            _ => {}
         }
         let rates = ProgramSettings {
             feed: section.feed,

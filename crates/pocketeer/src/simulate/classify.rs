@@ -4,7 +4,7 @@
 //! Rapids and moves that change height are told apart by their ends. A feed move at one height
 //! below the stock top is a cut when the tool meets stock somewhere along it and a link when
 //! it only moves through what earlier moves cleared: that is decided on a [`ZMap`] of cells of
-//! a twelfth of the tool radius (at most 2 048 across the program), testing the tool's disc
+//! a twelfth of the (smallest) tool radius (at most 2 048 across the program), testing the tool's disc
 //! shrunk by half a cell (what an earlier sample half a cell away covered), at points one cell
 //! apart along the moves. A move that takes off less
 //! than about a cell of stock may therefore show as a link; a link never shows as a cut.
@@ -55,17 +55,28 @@ const MAX_CELLS_ACROSS: f64 = 2048.0;
 /// assert_eq!(kinds, vec![Entry, Cut, Link, Retract, Rapid]);
 /// ```
 pub fn classify(moves: &[ProgramMove], r: f64) -> Vec<MoveKind> {
+    classify_with_tools(moves, &[(0, r)])
+}
+
+/// [`classify`] for a program of several tools: `radii` gives, for the first move of each
+/// tool, its radius (sorted by move; the first tool's radius before the first entry).
+pub fn classify_with_tools(moves: &[ProgramMove], radii: &[(usize, f64)]) -> Vec<MoveKind> {
+    let smallest = radii.iter().map(|t| t.1).fold(f64::INFINITY, f64::min);
+    let largest = radii.iter().map(|t| t.1).fold(0.0, f64::max);
+    let r_smallest = if smallest.is_finite() { smallest } else { 1.0 };
     let mut extent = Aabb::EMPTY;
     for m in moves {
         extent = extent.union(&m.footprint().bbox());
     }
-    let extent = extent.inflated(r.max(0.0));
+    let extent = extent.inflated(largest.max(0.0));
     let across = if extent.is_empty() {
         0.0
     } else {
         extent.width().max(extent.height())
     };
-    let cell = (r / 12.0).max(across / MAX_CELLS_ACROSS).max(1e-3);
+    let cell = (r_smallest / 12.0).max(across / MAX_CELLS_ACROSS).max(1e-3);
+    let mut tool = 0;
+    let mut r = radii.first().map_or(r_smallest, |t| t.1);
     let mut map = ZMap::new(extent, cell);
     let mut kinds = vec![MoveKind::Link; moves.len()];
     // The moves at one height since the last test point (each test judges the way to it),
@@ -73,6 +84,12 @@ pub fn classify(moves: &[ProgramMove], r: f64) -> Vec<MoveKind> {
     let mut pending: Vec<usize> = Vec::new();
     let mut since = f64::INFINITY;
     for (k, m) in moves.iter().enumerate() {
+        while tool + 1 < radii.len() && radii[tool + 1].0 <= k {
+            finish_stretch(&mut map, moves, &mut pending, &mut kinds, r, cell);
+            since = f64::INFINITY;
+            tool += 1;
+            r = radii[tool].1;
+        }
         let rise = m.to.z - m.from.z;
         let level = m.motion != Motion::Rapid && rise.abs() <= 1e-9 && m.from.z < 0.0;
         if !level {

@@ -155,6 +155,8 @@ pub struct Program {
     pub moves: Vec<ProgramMove>,
     /// Seconds of dwell (G4 P, in seconds as LinuxCNC, GRBL 1.1 and Mach3's default read it).
     pub dwell: f64,
+    /// The tools named (T words): the number of moves before each, and the tool's number.
+    pub tools: Vec<(usize, u32)>,
 }
 
 /// Reads `text`: G0/G1/G2/G3 (modal), G17 (G18/G19 refused), G20/G21, G90/G91, G90.1/G91.1,
@@ -289,6 +291,7 @@ impl State {
                 'R' => r = Some(v),
                 'P' => p = Some(v),
                 'F' => self.feed = Some(v * self.unit),
+                'T' if v >= 0.0 && v.fract() == 0.0 => out.tools.push((out.moves.len(), v as u32)),
                 _ => {}
             }
         }

@@ -12,7 +12,7 @@
 pub mod pack;
 
 use crate::geom::{Contour, Pocket, Point, Segment};
-use crate::simulate::classify::{classify, MoveKind};
+use crate::simulate::classify::{classify_with_tools, MoveKind};
 use crate::simulate::gcode::{Motion, ProgramMove};
 use pack::{quantize, Cursor, Packer};
 use serde::Serialize;
@@ -58,8 +58,10 @@ pub struct Preview<'a> {
     pub title: String,
     /// Show lengths in inches (the program's unit) instead of millimetres.
     pub inches: bool,
-    /// The tool's diameter, mm.
+    /// The tool's diameter, mm (the first tool's, in a program of several).
     pub tool_diameter: f64,
+    /// In a program of several tools: from which move on each tool cuts, and its diameter.
+    pub tool_changes: Vec<(usize, f64)>,
     /// The drawing's pockets, cut or not.
     pub pockets: &'a [Pocket],
     /// Which of them the program does not cut (indices).
@@ -91,6 +93,7 @@ struct PageData<'a> {
     title: &'a str,
     inches: bool,
     tool: f64,
+    tools: Vec<(usize, f64)>,
     quantum: f64,
     extent: [f64; 4],
     summary: &'a [(String, String)],
@@ -135,7 +138,7 @@ const CHORD_SHARE: f64 = 2e-5;
 /// let pockets = [Pocket { boundary: square, islands: vec![] }];
 /// let program = read_program("G0 X10 Y10 Z5\nG1 Z-1 F300\nG1 X20 F1000\nG0 Z5\n").unwrap();
 /// let html = page(&Preview {
-///     title: "square".into(), inches: false, tool_diameter: 6.0, pockets: &pockets, not_cut: vec![],
+///     title: "square".into(), inches: false, tool_diameter: 6.0, tool_changes: vec![], pockets: &pockets, not_cut: vec![],
 ///     open_chains: vec![], leftovers: vec![], marks: vec![], moves: &program.moves, dwell: 0.0,
 ///     rapid_rate: 5000.0, per_retract: 0.5, summary: vec![], report: String::new(),
 /// });
@@ -160,11 +163,16 @@ pub fn page(p: &Preview) -> String {
         extent = crate::geom::Aabb::from_points(Point::new(0.0, 0.0), Point::new(1.0, 1.0));
     }
     let chord = (CHORD_SHARE * extent.width().max(extent.height())).max(1e-4);
-    let kinds = classify(p.moves, 0.5 * p.tool_diameter);
+    let mut tools = vec![(0, p.tool_diameter)];
+    tools.extend(p.tool_changes.iter().copied());
+    tools.sort_by_key(|t| t.0);
+    let radii: Vec<(usize, f64)> = tools.iter().map(|&(k, d)| (k, 0.5 * d)).collect();
+    let kinds = classify_with_tools(p.moves, &radii);
     let data = PageData {
         title: &p.title,
         inches: p.inches,
         tool: p.tool_diameter,
+        tools,
         quantum: pack::QUANTUM,
         extent: [extent.min.x, extent.min.y, extent.max.x, extent.max.y],
         summary: &p.summary,

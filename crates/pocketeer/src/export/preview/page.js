@@ -307,14 +307,16 @@ function drawProgram(ctx, upTo) {
   const arrows = [];
   let run = 0, ax = 0, ay = 0;
   let drawn = 0;
-  const swept = visible.swept && deepest !== null ? new Path2D() : null;
+  // The swept area: one path per tool, stroked at its diameter.
+  const swept = visible.swept && deepest !== null ? D.tools.map(() => new Path2D()) : null;
   sweptMoves = 0;
-  let sweptPen = -1;
+  let sweptPen = -1, toolIndex = 0;
   const margin = 20;
   for (let i = 0; i < upTo; i++) {
     const k = M.K[i];
+    while (toolIndex + 1 < D.tools.length && D.tools[toolIndex + 1][0] <= i) { toolIndex++; sweptPen = -1; }
     if (swept && k !== K_RAPID && k !== K_RETRACT && Math.abs(M.Z[i + 1] - deepest) < 5e-5 && Math.abs(M.Z[i] - deepest) < 5e-5) {
-      addMove(swept, i, sweptPen);
+      addMove(swept[toolIndex], i, sweptPen);
       sweptPen = i + 1;
       sweptMoves++;
     }
@@ -349,8 +351,8 @@ function drawProgram(ctx, upTo) {
   lastDrawn = drawn;
   if (swept) {
     ctx.save();
-    ctx.strokeStyle = "rgba(40,160,80,0.35)"; ctx.lineWidth = D.tool * s; ctx.lineCap = "round"; ctx.lineJoin = "round";
-    ctx.stroke(swept);
+    ctx.strokeStyle = "rgba(40,160,80,0.35)"; ctx.lineCap = "round"; ctx.lineJoin = "round";
+    swept.forEach((path, t) => { ctx.lineWidth = D.tools[t][1] * s; ctx.stroke(path); });
     ctx.restore();
   }
   for (const k of [K_LINK, K_CUT, K_RAPID, K_ENTRY]) {
@@ -428,11 +430,18 @@ function drawOrigin(ctx) {
   ctx.fillStyle = "#222"; ctx.beginPath(); ctx.arc(x, y, 3, 0, 2 * Math.PI); ctx.fill();
   ctx.textAlign = "left"; ctx.fillText("X0 Y0", x + 5, y + 10);
 }
+// The diameter of the tool cutting move i (the last tool loaded at or before it).
+function toolAt(i) {
+  let d = D.tool;
+  for (const [k, dia] of D.tools) if (k <= i) d = dia;
+  return d;
+}
 function drawTool(ctx, upTo) {
   if (M.n === 0) return;
   const x = sx(M.X[upTo]), y = sy(M.Y[upTo]);
+  const tool = toolAt(Math.max(0, upTo - 1));
   ctx.fillStyle = "rgba(255,140,0,0.35)"; ctx.strokeStyle = "#c06000"; ctx.lineWidth = 1.5;
-  ctx.beginPath(); ctx.arc(x, y, Math.max(2, D.tool / 2 * s), 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+  ctx.beginPath(); ctx.arc(x, y, Math.max(2, tool / 2 * s), 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
   ctx.beginPath(); ctx.moveTo(x - 4, y); ctx.lineTo(x + 4, y); ctx.moveTo(x, y - 4); ctx.lineTo(x, y + 4); ctx.stroke();
 }
 function drawScale() {
@@ -462,7 +471,7 @@ function updateReadout(upTo) {
   readout.textContent =
     `move ${upTo} of ${M.n} (${KIND_NAMES[M.K[i]]}), line ${M.L[i]}:\n${moveText(i)}\n` +
     `X ${fmtNum(M.X[upTo])}  Y ${fmtNum(M.Y[upTo])}  Z ${fmtNum(M.Z[upTo])} ${D.inches ? "in" : "mm"}\n` +
-    `feed ${feed}\nelapsed ${fmtTime(M.T[i])} of ${fmtTime(total)}`;
+    `feed ${feed}, tool ${fmtLen(toolAt(i))} across\nelapsed ${fmtTime(M.T[i])} of ${fmtTime(total)}`;
   readout.dataset.line = String(M.L[i]);
 }
 let pending = false;

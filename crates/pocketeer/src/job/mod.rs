@@ -1,8 +1,12 @@
-//! The whole pocketing job on a drawing's pockets: plan every pocket, link them into one tool
-//! path.
+//! Jobs: the pockets of a drawing cleared with one tool ([`pocket_job`]), and a whole [`Job`]
+//! of operations, each on some layers with a tool of the job's library ([`run_job`]).
 //!
-//! In: the pockets, [`ClearParams`] and [`LinkParams`]. Out: a [`Job`], the plans, the linked
-//! tool path and the [`JobWarning`]s (pockets too narrow for the tool).
+//! In: the pockets, [`ClearParams`] and [`LinkParams`]. Out: a [`PocketJob`], the plans, the
+//! linked tool path and the [`JobWarning`]s (pockets too narrow for the tool).
+
+mod operations;
+
+pub use operations::{run_job, Job, Operation, OperationResult, PocketsOn, Tool};
 
 use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
 use crate::geom::PreparedPocket;
@@ -31,11 +35,47 @@ pub enum JobError {
         /// The widest place (the diameter of the largest circle in any pocket), mm.
         widest: f64,
     },
+    /// An operation names a tool the job's library does not hold.
+    #[error("operation {}: no tool {tool} in the job's tools (numbers: {})", .operation + 1,
+        .known.iter().map(ToString::to_string).collect::<Vec<_>>().join(", "))]
+    UnknownTool {
+        /// Which operation (0-based).
+        operation: usize,
+        /// The number it names.
+        tool: u32,
+        /// The numbers the library holds.
+        known: Vec<u32>,
+    },
+    /// Two tools of the library share a number.
+    #[error("two tools are numbered {0}")]
+    DuplicateTool(u32),
+    /// An operation's layers hold no pocket.
+    #[error("operation {}: no pocket on the layers {}", .operation + 1, .layers.join(", "))]
+    NoPockets {
+        /// Which operation (0-based).
+        operation: usize,
+        /// Its layers.
+        layers: Vec<String>,
+    },
+    /// Rest machining is asked for and not built yet.
+    #[error("operation {}: rest machining (rest = true) is not built yet", .operation + 1)]
+    RestNotBuilt {
+        /// Which operation (0-based).
+        operation: usize,
+    },
+    /// An operation could not be planned.
+    #[error("operation {}: {error}", .operation + 1)]
+    Operation {
+        /// Which operation (0-based).
+        operation: usize,
+        /// Why.
+        error: Box<JobError>,
+    },
 }
 
 /// A planned and linked job.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Job {
+pub struct PocketJob {
     /// The clearing plan of each pocket (empty where the tool fits nowhere).
     pub plans: Vec<ClearPlan>,
     /// The tool path and the linker's remarks.
@@ -65,7 +105,7 @@ pub fn pocket_job(
     clear: &ClearParams,
     link_params: &LinkParams,
     tol: &Tolerance,
-) -> Result<Job, JobError> {
+) -> Result<PocketJob, JobError> {
     link_params.check()?;
     let prepared: Vec<PreparedPocket> = pockets.iter().map(PreparedPocket::new).collect();
     let plans = prepared
@@ -93,7 +133,7 @@ pub fn pocket_job(
             near: p.boundary.segments[0].start(),
         })
         .collect();
-    Ok(Job {
+    Ok(PocketJob {
         plans,
         linked,
         warnings,

@@ -1,0 +1,151 @@
+//! `pocketeer job`: job files with a tool library and operations on layers, run as a user
+//! would, on the example plate (`examples/plate.dxf`: SHALLOW and DEEP layers).
+
+mod common;
+
+use pocketeer::simulate::gcode::Motion;
+use std::path::{Path, PathBuf};
+
+/// A folder holding the example plate and `job` as `job.toml`.
+fn job_dir(job: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        common::repo().join("examples/plate.dxf"),
+        dir.path().join("plate.dxf"),
+    )
+    .unwrap();
+    let path = dir.path().join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    (dir, path)
+}
+
+fn run_job(path: &Path) -> std::process::Output {
+    common::run(&["job", path.to_str().unwrap()])
+}
+
+const TOOLS: &str = r#"drawing = "plate.dxf"
+output = "plate.nc"
+post = "linuxcnc"
+
+[[tools]]
+number = 1
+diameter = "6mm"
+feed = "1200mm/min"
+plunge-feed = "300mm/min"
+spindle = 12000
+
+[[tools]]
+number = 2
+diameter = "2mm"
+feed = "600mm/min"
+plunge-feed = "150mm/min"
+spindle = 18000
+"#;
+
+#[test]
+fn two_layers_two_tools_one_program_with_a_tool_change() {
+    let job = format!(
+        "{TOOLS}\n[[operations]]\nlayers = [\"SHALLOW\"]\ntool = 1\ndepth = \"3mm\"\nstepover = \"40%\"\n\n[[operations]]\nlayers = [\"DEEP\"]\ntool = 1\ndepth = \"6mm\"\nstep-down = \"2mm\"\nstepover = \"40%\"\n\n[[operations]]\nlayers = [\"SHALLOW\"]\ntool = 2\ndepth = \"3mm\"\nstepover = \"40%\"\n"
+    );
+    let (dir, path) = job_dir(&job);
+    let out = run_job(&path);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(dir.path().join("plate.nc")).unwrap();
+    // One change, to tool 2 at its speed, after the spindle stopped at the safe height.
+    assert_eq!(text.matches("T1 M6").count(), 1);
+    assert_eq!(text.matches("T2 M6").count(), 1);
+    let change = text.find("T2 M6").unwrap();
+    assert!(
+        text[..change].ends_with("G0 Z5.0000\nM5\n(operation 3: layers SHALLOW, depth 3 mm, tool 2, 2 mm)\n"),
+        "{}",
+        &text[change.saturating_sub(200)..change]
+    );
+    assert!(text[change..].starts_with("T2 M6\nG43 H2\nM3 S18000\nG4 P2\n"));
+    // SHALLOW never below 3 mm, DEEP down to 6 mm: the moves of each section.
+    let p = pocketeer::simulate::read_program(&text).unwrap();
+    // The section comments after the header's list of the operations.
+    let body = text.find("T1 M6").unwrap();
+    let deep_start = text[..body + text[body..].find("(operation 2: layers DEEP").unwrap()]
+        .lines()
+        .count();
+    let deep_end = text[..change].lines().count();
+    let lowest = |from: usize, to: usize| {
+        p.moves
+            .iter()
+            .filter(|m| m.line > from && m.line <= to)
+            .map(|m| m.to.z)
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!((lowest(0, deep_start) + 3.0).abs() < 1e-9);
+    assert!((lowest(deep_start, deep_end) + 6.0).abs() < 1e-9);
+    assert!((lowest(deep_end, usize::MAX) + 3.0).abs() < 1e-9);
+    // The 2 mm tool's feeds.
+    assert!(p
+        .moves
+        .iter()
+        .any(|m| m.line > deep_end && m.motion != Motion::Rapid && m.feed == Some(600.0)));
+}
+
+#[test]
+fn a_misspelled_key_is_refused_with_its_line() {
+    let job = format!(
+        "{TOOLS}\n[[operations]]\nlayers = [\"DEEP\"]\ntool = 1\ndepth = \"6mm\"\nstepovr = \"40%\"\n"
+    );
+    let (_dir, path) = job_dir(&job);
+    let out = run_job(&path);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = job.lines().position(|l| l.starts_with("stepovr")).unwrap() + 1;
+    assert!(err.contains(&format!("job.toml:{line}:")), "{err}");
+    assert!(err.contains("stepovr"), "{err}");
+}
+
+#[test]
+fn a_layer_the_drawing_lacks_is_refused_with_its_line() {
+    let job = format!(
+        "{TOOLS}\n[[operations]]\nlayers = [\"DEEPER\"]\ntool = 1\ndepth = \"6mm\"\nstepover = \"40%\"\n"
+    );
+    let (_dir, path) = job_dir(&job);
+    let out = run_job(&path);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = job.lines().position(|l| l.contains("DEEPER")).unwrap() + 1;
+    assert!(
+        err.contains(&format!(
+            "job.toml:{line}: operations[1].layers: layer 'DEEPER' is not in plate.dxf"
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains("SHALLOW") && err.contains("DEEP"),
+        "the drawing's layers are listed: {err}"
+    );
+}
+
+#[test]
+fn a_tool_the_library_lacks_is_refused_with_its_line() {
+    let job = format!(
+        "{TOOLS}\n[[operations]]\nlayers = [\"DEEP\"]\ntool = 3\ndepth = \"6mm\"\nstepover = \"40%\"\n"
+    );
+    let (dir, path) = job_dir(&job);
+    let out = run_job(&path);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = job.lines().position(|l| l == "tool = 3").unwrap() + 1;
+    assert!(
+        err.contains(&format!("job.toml:{line}: operations[1].tool: no tool 3")),
+        "{err}"
+    );
+    assert!(!dir.path().join("plate.nc").exists(), "nothing written");
+}
+
+#[test]
+fn the_template_runs_on_the_example_plate() {
+    let out = common::run(&["job", "--print-template"]);
+    assert!(out.status.success());
+    let template = String::from_utf8(out.stdout).unwrap();
+    let (dir, path) = job_dir(&template);
+    let out = run_job(&path);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("plate.nc").exists());
+}
