@@ -78,8 +78,17 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
     })
     .map_err(|e| Failure(located(&loc, &loaded, &e)))?;
     for r in &results {
-        let w: Vec<String> = (r.pocketed.linked.warnings.iter().map(ToString::to_string))
-            .chain(r.pocketed.warnings.iter().map(ToString::to_string))
+        let Some(p) = &r.pocketed else {
+            eprintln!(
+                "operation {}: nothing left to cut for tool {} ({} mm): no moves written",
+                r.operation + 1,
+                r.tool.number,
+                crate::display::num(r.tool.diameter, 4)
+            );
+            continue;
+        };
+        let w: Vec<String> = (p.linked.warnings.iter().map(ToString::to_string))
+            .chain(p.warnings.iter().map(ToString::to_string))
             .map(|w| format!("operation {}: {w}", r.operation + 1))
             .collect();
         crate::print_warnings(&w);
@@ -100,14 +109,15 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
             )
         })
         .collect();
-    let sections: Vec<_> = results
-        .iter()
-        .enumerate()
-        .map(|(k, r)| {
-            let change = k == 0 || results[k - 1].tool.number != r.tool.number;
-            r.section(change, remarks[k].clone())
-        })
-        .collect();
+    let mut sections = Vec::new();
+    let mut loaded_tool = None;
+    for (k, r) in results.iter().enumerate() {
+        let change = loaded_tool != Some(r.tool.number);
+        if let Some(section) = r.section(change, remarks[k].clone()) {
+            sections.push(section);
+            loaded_tool = Some(r.tool.number);
+        }
+    }
     let first = analyses.values().next();
     let units = first.map_or(JobUnits::Millimetres, |a| JobUnits::of(a.drawing.units));
     let safe_z = loaded
@@ -218,12 +228,10 @@ fn analyses(
 fn located(loc: &Locator, loaded: &Loaded, e: &JobError) -> String {
     let span_of = |k: usize| loaded.keys.get(k).and_then(|o| o.tool.as_ref()).map(|t| t.span());
     match e {
-        JobError::UnknownTool { operation, .. } | JobError::RestNotBuilt { operation } => {
-            match span_of(*operation) {
-                Some(s) => loc.at(s, &format!("operations[{}]", operation + 1), &e.to_string()),
-                None => format!("{}: {e}", loc.name),
-            }
-        }
+        JobError::UnknownTool { operation, .. } => match span_of(*operation) {
+            Some(s) => loc.at(s, &format!("operations[{}]", operation + 1), &e.to_string()),
+            None => format!("{}: {e}", loc.name),
+        },
         _ => format!("{}: {e}", loc.name),
     }
 }
@@ -464,11 +472,10 @@ fn preview(
                     crate::display::num(r.tool.diameter, 4),
                     crate::display::num(op.link.depth, 4),
                     crate::display::num(op.stepover, 4),
-                    count(
-                        r.pocketed.plans.iter().map(|p| p.loop_count()).sum(),
-                        "loop",
-                        "loops"
-                    )
+                    match &r.pocketed {
+                        Some(p) => count(p.plans.iter().map(|p| p.loop_count()).sum(), "loop", "loops"),
+                        None => "nothing left to cut".to_string(),
+                    }
                 ),
             )
         })

@@ -149,3 +149,59 @@ fn the_template_runs_on_the_example_plate() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(dir.path().join("plate.nc").exists());
 }
+
+/// Length of the feed moves from line `from` on.
+fn feed_length(p: &pocketeer::simulate::Program, from: usize) -> f64 {
+    p.moves
+        .iter()
+        .filter(|m| m.line > from && m.motion != Motion::Rapid)
+        .map(|m| m.length())
+        .sum()
+}
+
+#[test]
+fn the_example_job_sends_the_small_tool_only_where_the_large_one_could_not_reach() {
+    let job = std::fs::read_to_string(common::repo().join("examples/plate.toml")).unwrap();
+    let (dir, path) = job_dir(&job);
+    let out = run_job(&path);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    // The DEEP pocket's corners and islands are all within the 6 mm tool's reach.
+    assert!(
+        err.contains("operation 4: nothing left to cut for tool 2"),
+        "{err}"
+    );
+    let rest = std::fs::read_to_string(dir.path().join("plate.nc")).unwrap();
+    // The same job with the 2 mm tool clearing its layers whole.
+    let (full_dir, full_path) = job_dir(&job.replace("rest = true", ""));
+    assert!(run_job(&full_path).status.success());
+    let full = std::fs::read_to_string(full_dir.path().join("plate.nc")).unwrap();
+    let change = |t: &str| t[..t.find("T2 M6").unwrap()].lines().count();
+    let (pr, pf) = (
+        pocketeer::simulate::read_program(&rest).unwrap(),
+        pocketeer::simulate::read_program(&full).unwrap(),
+    );
+    let (lr, lf) = (feed_length(&pr, change(&rest)), feed_length(&pf, change(&full)));
+    assert!(lr > 100.0, "the slot and the corners are cut: {lr}");
+    assert!(
+        lr < 0.35 * lf,
+        "the 2 mm tool cuts {lr:.1} mm against {lf:.1} mm for whole pockets"
+    );
+    // The 2 mm tool cuts the 4 mm slot the 6 mm one could not enter: moves along it, past its
+    // middle.
+    let along = |m: &pocketeer::simulate::gcode::ProgramMove| {
+        m.line > change(&rest)
+            && m.motion != Motion::Rapid
+            && (m.from.y - 60.0).abs() <= 1.0 + 1e-6
+            && (m.to.y - 60.0).abs() <= 1.0 + 1e-6
+            && m.from.x.min(m.to.x) < 35.0
+            && m.from.x.max(m.to.x) > 35.0
+    };
+    assert!(pr.moves.iter().any(along));
+    // SHALLOW stays at 3 mm with both tools.
+    assert!(pr
+        .moves
+        .iter()
+        .filter(|m| m.line > change(&rest))
+        .all(|m| m.to.z >= -3.0 - 1e-9));
+}

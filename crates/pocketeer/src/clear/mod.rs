@@ -17,6 +17,7 @@
 
 mod levels;
 mod residue;
+pub mod rest;
 mod tree;
 
 use crate::geom::Pocket;

@@ -411,7 +411,7 @@ fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Toleran
 
 /// Pieces of a group of crossing contours, cut where `cuts(contour in group, segment)` says,
 /// that have removed material on exactly one side, oriented with that material on their left.
-pub(super) fn boundary_pieces<'c>(
+pub(crate) fn boundary_pieces<'c>(
     group: &[&Contour],
     cuts: &dyn Fn(usize, usize) -> &'c [(f64, Point)],
     removed: &dyn Fn(Point) -> bool,
@@ -485,7 +485,7 @@ fn dedup_pieces(pieces: Vec<Segment>, tol: &Tolerance) -> Vec<Segment> {
 
 /// Joins pieces end to start into closed loops (see [`crate::geom::stitch`]); ends closer
 /// than [`Tolerance::crossing`] are one node. Returns the loops and how many pieces were left over.
-pub(super) fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
+pub(crate) fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, usize) {
     let ends: Vec<Point> = pieces.iter().flat_map(|p| [p.start(), p.end()]).collect();
     let node = cluster_points(&ends, tol.crossing());
     let pieces: Vec<Piece> = pieces
@@ -506,7 +506,11 @@ pub(super) fn stitch(pieces: Vec<Segment>, tol: &Tolerance) -> (Vec<Contour>, us
 /// Points of a hole tested against the boundaries around it.
 const OWNER_PROBES: usize = 8;
 
-fn assemble(loops: Vec<Contour>, tol: &Tolerance, warnings: &mut Vec<ImportWarning>) -> Vec<Pocket> {
+pub(crate) fn assemble(
+    loops: Vec<Contour>,
+    tol: &Tolerance,
+    warnings: &mut Vec<ImportWarning>,
+) -> Vec<Pocket> {
     let (outer, holes): (Vec<Contour>, Vec<Contour>) = loops.into_iter().partition(Contour::is_ccw);
     // Largest first; the area is a pass over the boundary, computed once per pocket.
     let mut by_area: Vec<(f64, Contour)> = outer.into_iter().map(|b| (b.signed_area(), b)).collect();

@@ -57,12 +57,6 @@ pub enum JobError {
         /// Its layers.
         layers: Vec<String>,
     },
-    /// Rest machining is asked for and not built yet.
-    #[error("operation {}: rest machining (rest = true) is not built yet", .operation + 1)]
-    RestNotBuilt {
-        /// Which operation (0-based).
-        operation: usize,
-    },
     /// An operation could not be planned.
     #[error("operation {}: {error}", .operation + 1)]
     Operation {

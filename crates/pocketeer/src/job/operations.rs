@@ -61,6 +61,7 @@ pub struct Operation {
 /// let done = run_job(&job, &|_layers: &[String]| Some((pockets.as_slice(), &tol))).unwrap();
 /// assert_eq!(done.len(), 1);
 /// assert_eq!(done[0].tool.number, 1);
+/// assert!(done[0].pocketed.is_some());
 /// ```
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Job {
@@ -77,22 +78,33 @@ pub struct OperationResult {
     pub operation: usize,
     /// Its tool.
     pub tool: Tool,
-    /// Its plans and tool path.
-    pub pocketed: PocketJob,
+    /// Its plans and tool path; `None` for a rest operation that found nothing to cut.
+    pub pocketed: Option<PocketJob>,
+}
+
+/// True when the two lists name the same layers (in any case and order).
+fn same_layers(a: &[String], b: &[String]) -> bool {
+    let norm = |l: &[String]| {
+        let mut v: Vec<String> = l.iter().map(|s| s.to_lowercase()).collect();
+        v.sort();
+        v.dedup();
+        v
+    };
+    norm(a) == norm(b)
 }
 
 impl OperationResult {
-    /// The program section of this operation; `change` when its tool must be loaded (it is
-    /// not the one the section before used).
-    pub fn section(&self, change: bool, remark: String) -> ToolSection<'_> {
-        ToolSection {
-            toolpath: &self.pocketed.linked.toolpath,
+    /// The program section of this operation (none when it cuts nothing); `change` when its
+    /// tool must be loaded (it is not the one the section before used).
+    pub fn section(&self, change: bool, remark: String) -> Option<ToolSection<'_>> {
+        Some(ToolSection {
+            toolpath: &self.pocketed.as_ref()?.linked.toolpath,
             tool: change.then_some(self.tool.number),
             feed: self.tool.feed,
             plunge_feed: self.tool.plunge_feed,
             spindle: self.tool.spindle,
             remark,
-        }
+        })
     }
 }
 
@@ -118,15 +130,46 @@ pub fn run_job<'a>(job: &Job, pockets_on: &PocketsOn<'a>) -> Result<Vec<Operatio
                 tool: op.tool,
                 known: numbers.clone(),
             })?;
-        if op.rest {
-            return Err(JobError::RestNotBuilt { operation: k });
-        }
         let (pockets, tol) = pockets_on(&op.layers)
             .filter(|(p, _)| !p.is_empty())
             .ok_or_else(|| JobError::NoPockets {
                 operation: k,
                 layers: op.layers.clone(),
             })?;
+        let fail = |e: JobError| JobError::Operation {
+            operation: k,
+            error: Box::new(e),
+        };
+        // A rest operation clears what the earlier ones on the same layers, as deep or
+        // deeper, left for its tool.
+        let rest: Vec<Pocket>;
+        let pockets = if op.rest {
+            let earlier: Vec<f64> = job.operations[..k]
+                .iter()
+                .filter(|o| same_layers(&o.layers, &op.layers) && o.link.depth >= op.link.depth - 1e-9)
+                .filter_map(|o| job.tools.iter().find(|t| t.number == o.tool))
+                .map(|t| 0.5 * t.diameter)
+                .collect();
+            let mut left = Vec::new();
+            for p in pockets {
+                left.extend(
+                    crate::clear::rest::rest_pockets(p, 0.5 * tool.diameter, &earlier, tol)
+                        .map_err(|e| fail(JobError::Clear(e.into())))?,
+                );
+            }
+            rest = left;
+            if rest.is_empty() {
+                out.push(OperationResult {
+                    operation: k,
+                    tool,
+                    pocketed: None,
+                });
+                continue;
+            }
+            &rest[..]
+        } else {
+            pockets
+        };
         let clear = ClearParams {
             tool_radius: 0.5 * tool.diameter,
             stepover: op.stepover,
@@ -135,14 +178,23 @@ pub fn run_job<'a>(job: &Job, pockets_on: &PocketsOn<'a>) -> Result<Vec<Operatio
         let mut link = op.link;
         link.time.feed = tool.feed;
         link.time.plunge_feed = tool.plunge_feed;
-        let pocketed = pocket_job(pockets, &clear, &link, tol).map_err(|e| JobError::Operation {
-            operation: k,
-            error: Box::new(e),
-        })?;
+        let pocketed = match pocket_job(pockets, &clear, &link, tol) {
+            Ok(p) => p,
+            // Rest pieces too narrow for the tool (slivers the larger tools' rounding left).
+            Err(JobError::ToolFitsNowhere { .. }) if op.rest => {
+                out.push(OperationResult {
+                    operation: k,
+                    tool,
+                    pocketed: None,
+                });
+                continue;
+            }
+            Err(e) => return Err(fail(e)),
+        };
         out.push(OperationResult {
             operation: k,
             tool,
-            pocketed,
+            pocketed: Some(pocketed),
         });
     }
     Ok(out)
