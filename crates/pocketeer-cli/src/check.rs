@@ -3,7 +3,7 @@
 use crate::length::{parse_length, parse_nonneg_length, parse_rate};
 use crate::{emit, output, read_analysis, DrawingArgs, Failure};
 use clap::Args;
-use pocketeer::simulate::{check_program, read_program, CheckParams, CheckReport};
+use pocketeer::simulate::{read_program, CheckParams, CheckReport};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -13,9 +13,15 @@ pub struct CheckArgs {
     drawing: DrawingArgs,
     /// The G-code program to check.
     program: PathBuf,
-    /// Tool diameter (6, 6mm, 0.25in).
+    /// Tool diameter (6, 6mm, 0.25in), for a program of one tool.
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
-    tool_diameter: f64,
+    tool_diameter: Option<f64>,
+    /// For a program of several tools: the diameter of tool T (its T word), as T=D (2=2mm);
+    /// once per tool. Each move's gouge is measured with its tool, the leftover against the
+    /// smallest. Given a job file (.toml) in place of the drawing, its tools and layers are
+    /// used: each layer checked at its own depth with the operations on it.
+    #[arg(long = "tool", value_parser = parse_tool, allow_hyphen_values = true)]
+    tools: Vec<(u32, f64)>,
     /// Depth of the pocket below Z=0: the area swept at this depth or deeper is judged
     /// [default: the deepest Z of the program].
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
@@ -50,11 +56,43 @@ pub enum Verdict {
     Failed,
 }
 
+/// `T=D`: a tool number and its diameter.
+fn parse_tool(s: &str) -> Result<(u32, f64), String> {
+    let (t, d) = s
+        .split_once('=')
+        .ok_or_else(|| format!("'{s}': a tool as T=D (example: 2=2mm)"))?;
+    let t: u32 = t
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{t}' is not a tool number"))?;
+    let d = parse_length(d)?;
+    if !(d.is_finite() && d > 0.0) {
+        return Err(format!("'{s}': the diameter must be positive"));
+    }
+    Ok((t, d))
+}
+
 pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
-    if !(args.tool_diameter.is_finite() && args.tool_diameter > 0.0) {
+    let is_job = args
+        .drawing
+        .file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    if is_job {
+        return check_job(args);
+    }
+    let tool_diameter = match (args.tool_diameter, args.tools.first()) {
+        (Some(d), _) => d,
+        (None, Some(&(_, d))) => d,
+        (None, None) => {
+            return Err(Failure(
+                "--tool-diameter (or --tool T=D for each tool of the program, or a job file in place of the drawing) is needed".into(),
+            ))
+        }
+    };
+    if !(tool_diameter.is_finite() && tool_diameter > 0.0) {
         return Err(Failure(format!(
-            "--tool-diameter {}: the tool diameter must be positive",
-            args.tool_diameter
+            "--tool-diameter {tool_diameter}: the tool diameter must be positive"
         )));
     }
     if let Some(d) = args.depth.filter(|d| !(d.is_finite() && *d > 0.0)) {
@@ -88,27 +126,38 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     let text = String::from_utf8_lossy(&text);
     let program = read_program(&text).map_err(|e| Failure(format!("{name}: {e}")))?;
     let params = CheckParams {
-        tool_radius: 0.5 * args.tool_diameter,
+        tool_radius: 0.5 * tool_diameter,
         depth: args.depth,
         gouge_tolerance: args.gouge_tolerance,
         leftover_tolerance: args.leftover_tolerance,
         rapid_rate: args.rapid_rate,
         per_retract: args.retract_time,
     };
-    let report = check_program(&analysis.nesting.pockets, &program, &params, &analysis.tolerance)
-        .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
+    let radii = if args.tools.is_empty() {
+        vec![(0, params.tool_radius)]
+    } else {
+        tool_radii(&program, &args.tools, &name.to_string())?
+    };
+    let report = pocketeer::simulate::check_program_tools(
+        &analysis.nesting.pockets,
+        &program,
+        &radii,
+        &params,
+        &analysis.tolerance,
+    )
+    .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
     if let Some(path) = &args.svg {
         output::write_atomic(
             path,
-            preview(&analysis, &program, &report, args.tool_diameter).as_bytes(),
+            preview(&analysis, &program, &report, tool_diameter).as_bytes(),
         )
         .map_err(Failure)?;
     }
     if let Some(path) = &args.preview {
         let context = crate::page::Context {
             title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.program)),
-            tool_diameter: args.tool_diameter,
-            tool_changes: Vec::new(),
+            tool_diameter,
+            tool_changes: radii.iter().map(|&(k, r)| (k, 2.0 * r)).collect(),
             inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
             rapid_rate: args.rapid_rate,
             per_retract: args.retract_time,
@@ -136,6 +185,162 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     } else {
         Verdict::Failed
     })
+}
+
+/// Each tool's radius from the move it is loaded at, by the program's T words and the
+/// diameters given; moves before the first T word are the first tool's.
+fn tool_radii(
+    program: &pocketeer::simulate::Program,
+    tools: &[(u32, f64)],
+    name: &str,
+) -> Result<Vec<(usize, f64)>, Failure> {
+    let diameter = |t: u32| tools.iter().find(|x| x.0 == t).map(|x| x.1);
+    let mut out = Vec::new();
+    for &(k, t) in &program.tools {
+        let d = diameter(t).ok_or_else(|| {
+            let line = program.moves.get(k).map_or(0, |m| m.line);
+            Failure(format!(
+                "{name}: tool {t} is loaded (before line {line}): give its diameter with --tool {t}=D"
+            ))
+        })?;
+        out.push((k, 0.5 * d));
+    }
+    if out.is_empty() {
+        out.push((0, 0.5 * tools[0].1));
+    }
+    out[0].0 = 0;
+    Ok(out)
+}
+
+/// `check JOB.toml PROGRAM`: every layer set of the job checked at its own depth with the
+/// moves of the operations on it (the program's `(operation N: …)` comments say which), each
+/// tool's gouge with its radius, the leftover against the smallest tool's reach, and the
+/// stock cut deeper than the layer's depth.
+fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
+    let (loaded, analyses) = crate::job::read_job(&args.drawing.file, None)?;
+    let name = args.program.display().to_string();
+    let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
+    let text = String::from_utf8_lossy(&text);
+    let program = read_program(&text).map_err(|e| Failure(format!("{name}: {e}")))?;
+    // Where each operation's moves start: its comment after the header.
+    let header_end = text
+        .lines()
+        .position(|l| !l.trim_start().starts_with('('))
+        .unwrap_or(0);
+    let mut starts: Vec<(usize, usize)> = Vec::new(); // (line from 1, operation)
+    for (i, l) in text.lines().enumerate().skip(header_end) {
+        if let Some(rest) = l.trim().strip_prefix("(operation ") {
+            if let Some(n) = rest
+                .split(':')
+                .next()
+                .and_then(|n| n.trim().parse::<usize>().ok())
+            {
+                starts.push((i + 1, n.saturating_sub(1)));
+            }
+        }
+    }
+    if starts.is_empty() {
+        return Err(Failure(format!(
+            "{name}: no (operation N: ...) comments: not a program of this job; check it with --tool T=D against the drawing instead"
+        )));
+    }
+    let op_of_line = |line: usize| starts.iter().take_while(|s| s.0 <= line).last().map(|s| s.1);
+    let mut sets: Vec<Vec<String>> = Vec::new();
+    for op in &loaded.job.operations {
+        let key = crate::job::layer_key(&op.layers);
+        if !sets.contains(&key) {
+            sets.push(key);
+        }
+    }
+    let mut out = String::new();
+    let mut passed = true;
+    for key in &sets {
+        let Some(a) = analyses.get(key) else { continue };
+        let ops: Vec<usize> = (0..loaded.job.operations.len())
+            .filter(|&k| crate::job::layer_key(&loaded.job.operations[k].layers) == *key)
+            .collect();
+        let depth = ops
+            .iter()
+            .map(|&k| loaded.job.operations[k].link.depth)
+            .fold(0.0, f64::max);
+        let mut moves = Vec::new();
+        let mut radii: Vec<(usize, f64)> = Vec::new();
+        let mut last_op = None;
+        for m in &program.moves {
+            let Some(op) = op_of_line(m.line).filter(|op| ops.contains(op)) else {
+                continue;
+            };
+            if last_op != Some(op) {
+                let number = loaded.job.operations[op].tool;
+                let d = loaded
+                    .job
+                    .tools
+                    .iter()
+                    .find(|t| t.number == number)
+                    .map_or(0.0, |t| t.diameter);
+                radii.push((moves.len(), 0.5 * d));
+                last_op = Some(op);
+            }
+            moves.push(*m);
+        }
+        if moves.is_empty() {
+            continue;
+        }
+        let part = pocketeer::simulate::Program {
+            moves,
+            dwell: 0.0,
+            tools: Vec::new(),
+        };
+        // The reach of the layers' smallest tool, whether or not it has moves.
+        let r_min = ops
+            .iter()
+            .filter_map(|&k| {
+                let n = loaded.job.operations[k].tool;
+                loaded.job.tools.iter().find(|t| t.number == n)
+            })
+            .map(|t| 0.5 * t.diameter)
+            .fold(f64::INFINITY, f64::min);
+        let params = CheckParams {
+            tool_radius: r_min,
+            depth: Some(depth),
+            gouge_tolerance: args.gouge_tolerance,
+            leftover_tolerance: args.leftover_tolerance,
+            rapid_rate: loaded.rapid_rate,
+            per_retract: loaded.retract_time,
+        };
+        let report = pocketeer::simulate::check_program_tools(
+            &a.nesting.pockets,
+            &part,
+            &radii,
+            &params,
+            &a.tolerance,
+        )
+        .map_err(|e| Failure(format!("{}: {e}", loaded.drawing.display())))?;
+        let deeper = report.deepest < -depth - 1e-3;
+        let _ = writeln!(
+            out,
+            "layers {} at {} mm, operations {}:",
+            key.join(", "),
+            crate::display::num(depth, 4),
+            ops.iter()
+                .map(|k| (k + 1).to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        out.push_str(&to_text(&report, &params));
+        if deeper {
+            let _ = writeln!(
+                out,
+                "CUT TOO DEEP: Z{:.4}, below the layers' depth of {} mm",
+                report.deepest,
+                crate::display::num(depth, 4)
+            );
+        }
+        passed &= report.passed && !deeper;
+    }
+    let _ = writeln!(out, "{}", if passed { "JOB PASSED" } else { "JOB FAILED" });
+    emit(&out)?;
+    Ok(if passed { Verdict::Passed } else { Verdict::Failed })
 }
 
 fn file_name(p: &std::path::Path) -> String {

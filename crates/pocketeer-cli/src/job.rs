@@ -29,18 +29,42 @@ pub struct JobArgs {
 }
 
 /// A job file read and checked: the library's job, and what the program needs besides.
-struct Loaded {
-    job: Job,
-    drawing: PathBuf,
-    output: PathBuf,
+pub struct Loaded {
+    pub job: Job,
+    pub drawing: PathBuf,
+    pub output: PathBuf,
     dialect: Dialect,
     coolant: Coolant,
     spindle_wait: f64,
-    rapid_rate: f64,
-    retract_time: f64,
+    pub rapid_rate: f64,
+    pub retract_time: f64,
     options: ImportOptions,
     /// Each operation's keys, `[defaults]` filled in (for messages that point at them).
     keys: Vec<OperationKeys>,
+}
+
+/// The drawing read once per set of layers the operations name.
+pub type Analyses = BTreeMap<Vec<String>, Analysis>;
+
+/// Reads the job file at `path` and its drawing, every layer set once; `output` overrides the
+/// file's output.
+pub fn read_job(path: &Path, output: Option<&PathBuf>) -> Result<(Loaded, Analyses), Failure> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
+    let file = jobfile::parse(&name, &text).map_err(Failure)?;
+    let loc = Locator {
+        name: &name,
+        text: &text,
+    };
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut loaded = load(&file, &loc, base).map_err(Failure)?;
+    if let Some(o) = output {
+        loaded.output = o.clone();
+    }
+    let bytes = std::fs::read(&loaded.drawing)
+        .map_err(|e| Failure(format!("{}: cannot read: {e}", loaded.drawing.display())))?;
+    let analyses = analyses(&loc, &loaded, &bytes)?;
+    Ok((loaded, analyses))
 }
 
 pub fn run(args: &JobArgs) -> Result<(), Failure> {
@@ -51,25 +75,17 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
         return Err(Failure("a job file is needed (or --print-template)".into()));
     };
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
-    let file = jobfile::parse(&name, &text).map_err(Failure)?;
-    let loc = Locator {
-        name: &name,
-        text: &text,
-    };
-    let base = path.parent().unwrap_or(Path::new(""));
-    let mut loaded = load(&file, &loc, base).map_err(Failure)?;
-    if let Some(o) = &args.output {
-        loaded.output = o.clone();
-    }
+    let (loaded, analyses) = read_job(path, args.output.as_ref())?;
     let mut outputs = vec![("output", loaded.output.as_path())];
     if let Some(p) = &args.preview {
         outputs.push(("--preview", p.as_path()));
     }
     output::guard(&[path, &loaded.drawing], &outputs).map_err(Failure)?;
-    let bytes = std::fs::read(&loaded.drawing)
-        .map_err(|e| Failure(format!("{}: cannot read: {e}", loaded.drawing.display())))?;
-    let analyses = analyses(&loc, &loaded, &bytes)?;
+    let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
+    let loc = Locator {
+        name: &name,
+        text: &text,
+    };
     let key = |layers: &[String]| layer_key(layers);
     let results = run_job(&loaded.job, &|layers: &[String]| {
         analyses
@@ -173,7 +189,7 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
 }
 
 /// A layer set as a map key: names in lower case, sorted.
-fn layer_key(layers: &[String]) -> Vec<String> {
+pub fn layer_key(layers: &[String]) -> Vec<String> {
     let mut k: Vec<String> = layers.iter().map(|l| l.to_lowercase()).collect();
     k.sort();
     k.dedup();

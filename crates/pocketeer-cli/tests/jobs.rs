@@ -205,3 +205,47 @@ fn the_example_job_sends_the_small_tool_only_where_the_large_one_could_not_reach
         .filter(|m| m.line > change(&rest))
         .all(|m| m.to.z >= -3.0 - 1e-9));
 }
+
+#[test]
+fn check_replays_a_job_layer_by_layer_with_each_tool() {
+    let job = std::fs::read_to_string(common::repo().join("examples/plate.toml")).unwrap();
+    let (dir, path) = job_dir(&job);
+    assert!(run_job(&path).status.success());
+    let nc = dir.path().join("plate.nc");
+    let out = common::run(&["check", path.to_str().unwrap(), nc.to_str().unwrap()]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{report}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        report.contains("layers shallow at 3 mm, operations 1, 3:"),
+        "{report}"
+    );
+    assert!(
+        report.contains("layers deep at 6 mm, operations 2, 4:"),
+        "{report}"
+    );
+    assert!(report.ends_with("JOB PASSED\n"), "{report}");
+    // Without the 2 mm tool's part the slot and the corners are left: the check fails there.
+    let text = std::fs::read_to_string(&nc).unwrap();
+    let cut = text.find("M5\n(operation 3").unwrap();
+    let short = dir.path().join("short.nc");
+    std::fs::write(&short, format!("{}M5\nM2\n", &text[..cut])).unwrap();
+    let out = common::run(&["check", path.to_str().unwrap(), short.to_str().unwrap()]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{report}");
+    assert!(
+        report.contains("thickest 4.0000 mm at (35.000, 60.000)"),
+        "the slot: {report}"
+    );
+    // A SHALLOW move below its 3 mm is reported.
+    let deep = text.replacen("Z-3.0000", "Z-3.5000", 1);
+    let deeper = dir.path().join("deeper.nc");
+    std::fs::write(&deeper, deep).unwrap();
+    let out = common::run(&["check", path.to_str().unwrap(), deeper.to_str().unwrap()]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{report}");
+    assert!(report.contains("CUT TOO DEEP"), "{report}");
+}

@@ -133,15 +133,44 @@ pub fn check_program(
     params: &CheckParams,
     tol: &Tolerance,
 ) -> Result<CheckReport, OffsetError> {
-    let r = params.tool_radius;
+    check_program_tools(pockets, program, &[(0, params.tool_radius)], params, tol)
+}
+
+/// [`check_program`] for a program of several tools: `radii` gives, from which move on, each
+/// tool's radius (sorted by move). Each move's gouge is measured with its own tool's radius,
+/// the area swept with each tool's, and the leftover against what the smallest tool can
+/// reach: the smallest of `radii` and `params.tool_radius` (a tool that should have cut and
+/// has no move still counts). The engagement is measured for a program of one
+/// tool only (with several it is left empty): a cut's engagement depends on which tool made
+/// each earlier cut.
+pub fn check_program_tools(
+    pockets: &[Pocket],
+    program: &Program,
+    radii: &[(usize, f64)],
+    params: &CheckParams,
+    tol: &Tolerance,
+) -> Result<CheckReport, OffsetError> {
+    let default = [(0, params.tool_radius)];
+    let radii = if radii.is_empty() { &default[..] } else { radii };
     let moves = &program.moves;
+    let radius_at = |k: usize| {
+        radii
+            .iter()
+            .take_while(|t| t.0 <= k)
+            .last()
+            .or(radii.first())
+            .map_or(params.tool_radius, |t| t.1)
+    };
+    let smallest = radii.iter().map(|t| t.1).fold(f64::INFINITY, f64::min);
+    let r_min = smallest.min(params.tool_radius);
     let deepest = moves.iter().map(|m| m.to.z.min(m.from.z)).fold(0.0, f64::min);
     let final_depth = params.depth.map_or(deepest, |d| -d);
     let walls = Walls::new(pockets);
     let mut report = CheckReport::empty(final_depth, deepest, program.dwell);
     let mut gouges: Vec<(f64, Option<Place>)> = vec![(0.0, None); pockets.len()];
-    let history = super::history::CutHistory::new(moves, r);
+    let history = super::history::CutHistory::with_radii(moves, (0..moves.len()).map(radius_at).collect());
     for (k, m) in moves.iter().enumerate() {
+        let r = radius_at(k);
         let place = |p: Point| Place {
             x: p.x,
             y: p.y,
@@ -169,11 +198,24 @@ pub fn check_program(
             report.plunges.push(place(m.to.xy()));
         }
     }
-    report.engagement = super::engagement::engagement(moves, &history, r);
-    report.swept = swept(moves, final_depth, r);
-    report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
+    if radii.len() <= 1 {
+        let r = radius_at(0);
+        report.engagement = super::engagement::engagement(moves, &history, r);
+        report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
+    }
+    // The area swept: each tool's moves with its radius.
+    let mut bounds: Vec<usize> = radii.iter().map(|t| t.0.min(moves.len())).collect();
+    bounds[0] = 0;
+    bounds.push(moves.len());
+    for (t, w) in bounds.windows(2).enumerate() {
+        if w[0] < w[1] {
+            report
+                .swept
+                .extend(swept(&moves[w[0]..w[1]], final_depth, radii[t].1));
+        }
+    }
     for (i, p) in pockets.iter().enumerate() {
-        let pc = pocket_check(p, &walls.prepared[i], &report.swept, gouges[i], r, tol)?;
+        let pc = pocket_check(p, &walls.prepared[i], &report.swept, gouges[i], r_min, tol)?;
         report.gouge = report.gouge.max(pc.gouge);
         report.thickest = report.thickest.max(pc.thickest);
         report.pockets.push(pc);

@@ -15,6 +15,10 @@ pub struct CutHistory<'a> {
     moves: &'a [ProgramMove],
     /// Each move's footprint in XY, made once (an arc's takes trigonometry).
     footprints: Vec<Segment>,
+    /// The radius of the tool that made each move.
+    radii: Vec<f64>,
+    /// The largest of them.
+    largest: f64,
     cell: f64,
     cells: HashMap<(i64, i64), Vec<u32>>,
 }
@@ -26,7 +30,19 @@ const SLACK: f64 = 1e-3;
 impl<'a> CutHistory<'a> {
     /// Indexes the feed moves of `moves` that go below Z=0, for a tool of radius `r`.
     pub fn new(moves: &'a [ProgramMove], r: f64) -> CutHistory<'a> {
-        let cell = r.max(1e-3);
+        CutHistory::with_radii(moves, vec![r; moves.len()])
+    }
+
+    /// [`CutHistory::new`] for a program of several tools: `radii[k]` is the radius of the
+    /// tool that makes move `k`.
+    pub fn with_radii(moves: &'a [ProgramMove], radii: Vec<f64>) -> CutHistory<'a> {
+        let smallest = radii.iter().copied().fold(f64::INFINITY, f64::min);
+        let largest = radii.iter().copied().fold(0.0, f64::max);
+        let cell = if smallest.is_finite() {
+            smallest.max(1e-3)
+        } else {
+            1.0
+        };
         let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
         let footprints: Vec<Segment> = moves.iter().map(ProgramMove::footprint).collect();
         for (k, m) in moves.iter().enumerate() {
@@ -50,6 +66,8 @@ impl<'a> CutHistory<'a> {
         CutHistory {
             moves,
             footprints,
+            radii,
+            largest,
             cell,
             cells,
         }
@@ -95,9 +113,9 @@ impl<'a> CutHistory<'a> {
         false
     }
 
-    /// True when, before move `before`, the tool of radius `r` had cut the whole disc of
-    /// radius `r` around `p` down to `z` or deeper: every sample of the disc (its centre and
-    /// two rings) lies within the radius of a feed move that passed there at `z` or below.
+    /// True when, before move `before`, the tools had cut the whole disc of radius `r` around
+    /// `p` down to `z` or deeper: every sample of the disc (its centre and two rings) lies
+    /// within the radius of the tool of a feed move that passed there at `z` or below.
     pub fn cleared(&self, before: usize, p: Point, z: f64, r: f64) -> bool {
         let mut samples = vec![p];
         for (ring, n) in [(0.5, 8), (0.98, 16)] {
@@ -106,12 +124,15 @@ impl<'a> CutHistory<'a> {
                 samples.push(p + Vector::from_angle(a) * (ring * r));
             }
         }
-        samples.iter().all(|&q| self.cut_at(before, q, z, r))
+        samples.iter().all(|&q| self.cut_at(before, q, z))
     }
 
-    /// True when a feed move before `before` passed within `r` of `q` at `z` or below.
-    fn cut_at(&self, before: usize, q: Point, z: f64, r: f64) -> bool {
-        self.visit_near(before, q, r, |k| self.passed(k, q, z, r + SLACK))
+    /// True when a feed move before `before` passed within its tool's radius of `q` at `z` or
+    /// below.
+    fn cut_at(&self, before: usize, q: Point, z: f64) -> bool {
+        self.visit_near(before, q, self.largest, |k| {
+            self.passed(k, q, z, self.radii[k] + SLACK)
+        })
     }
 
     /// True when move `k` passed within `r` of `q` at `z` or below.
