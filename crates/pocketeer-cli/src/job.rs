@@ -43,6 +43,36 @@ pub struct Loaded {
     keys: Vec<OperationKeys>,
 }
 
+impl Loaded {
+    /// A job made elsewhere than in a job file (from a drawing's layer names).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        job: Job,
+        drawing: PathBuf,
+        output: PathBuf,
+        dialect: Dialect,
+        coolant: Coolant,
+        spindle_wait: f64,
+        rapid_rate: f64,
+        retract_time: f64,
+        options: ImportOptions,
+    ) -> Loaded {
+        let keys = vec![OperationKeys::default(); job.operations.len()];
+        Loaded {
+            job,
+            drawing,
+            output,
+            dialect,
+            coolant,
+            spindle_wait,
+            rapid_rate,
+            retract_time,
+            options,
+            keys,
+        }
+    }
+}
+
 /// The drawing read once per set of layers the operations name.
 pub type Analyses = BTreeMap<Vec<String>, Analysis>;
 
@@ -63,7 +93,7 @@ pub fn read_job(path: &Path, output: Option<&PathBuf>) -> Result<(Loaded, Analys
     }
     let bytes = std::fs::read(&loaded.drawing)
         .map_err(|e| Failure(format!("{}: cannot read: {e}", loaded.drawing.display())))?;
-    let analyses = analyses(&loc, &loaded, &bytes)?;
+    let analyses = analyses(Some(&loc), &loaded, &bytes)?;
     Ok((loaded, analyses))
 }
 
@@ -86,13 +116,29 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
         name: &name,
         text: &text,
     };
+    execute(&loaded, &analyses, path, args.preview.as_deref(), &|e| {
+        located(&loc, &loaded, e)
+    })
+}
+
+/// Runs a job read and checked (from a job file, or from a drawing's layer names) and writes
+/// its program, and its preview when asked; `source` names it in the header and the title,
+/// `locate` words the library's errors.
+pub fn execute(
+    loaded: &Loaded,
+    analyses: &Analyses,
+    source: &Path,
+    preview_page: Option<&Path>,
+    locate: &dyn Fn(&JobError) -> String,
+) -> Result<(), Failure> {
+    let path = source;
     let key = |layers: &[String]| layer_key(layers);
     let results = run_job(&loaded.job, &|layers: &[String]| {
         analyses
             .get(&key(layers))
             .map(|a| (a.nesting.pockets.as_slice(), &a.tolerance))
     })
-    .map_err(|e| Failure(located(&loc, &loaded, &e)))?;
+    .map_err(|e| Failure(locate(&e)))?;
     for r in &results {
         let Some(p) = &r.pocketed else {
             eprintln!(
@@ -144,7 +190,15 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
         .fold(0.0, f64::max);
     let mut header = vec![
         format!("pocketeer {}", env!("CARGO_PKG_VERSION")),
-        format!("job {}", file_name(path)),
+        format!(
+            "{} {}",
+            if is_toml(path) {
+                "job"
+            } else {
+                "layer parameters of"
+            },
+            file_name(path)
+        ),
         format!("drawing {}", file_name(&loaded.drawing)),
     ];
     header.extend(remarks.iter().cloned());
@@ -164,8 +218,8 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
     let program = write_gcode_tools(&sections, &settings, loaded.dialect);
     let read = pocketeer::simulate::read_program(&program)
         .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
-    if let Some(page) = &args.preview {
-        let doc = preview(&loaded, &results, &analyses, &read, path)?;
+    if let Some(page) = preview_page {
+        let doc = preview(loaded, &results, analyses, &read, path)?;
         output::write_atomic(page, doc.as_bytes()).map_err(Failure)?;
     }
     output::write_output(&loaded.output, program.as_bytes()).map_err(Failure)?;
@@ -189,6 +243,10 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
 }
 
 /// A layer set as a map key: names in lower case, sorted.
+fn is_toml(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+}
+
 pub fn layer_key(layers: &[String]) -> Vec<String> {
     let mut k: Vec<String> = layers.iter().map(|l| l.to_lowercase()).collect();
     k.sort();
@@ -198,8 +256,8 @@ pub fn layer_key(layers: &[String]) -> Vec<String> {
 
 /// The drawing read once for each set of layers the operations name; a layer the drawing
 /// lacks is an error at the operation that names it.
-fn analyses(
-    loc: &Locator,
+pub fn analyses(
+    loc: Option<&Locator>,
     loaded: &Loaded,
     bytes: &[u8],
 ) -> Result<BTreeMap<Vec<String>, Analysis>, Failure> {
@@ -214,16 +272,17 @@ fn analyses(
             .iter()
             .find(|l| !all.layers.iter().any(|d| d.eq_ignore_ascii_case(l)))
         {
-            let span = loaded.keys[k].layers.as_ref().map_or(0..0, |l| l.span());
-            return Err(Failure(loc.at(
-                span,
-                &format!("operations[{}].layers", k + 1),
-                &format!(
-                    "layer '{layer}' is not in {} (its layers: {})",
-                    file_name(&loaded.drawing),
-                    all.layers.join(", ")
-                ),
-            )));
+            let what = format!(
+                "layer '{layer}' is not in {} (its layers: {})",
+                file_name(&loaded.drawing),
+                all.layers.join(", ")
+            );
+            return Err(Failure(
+                match (loc, loaded.keys.get(k).and_then(|o| o.layers.as_ref())) {
+                    (Some(loc), Some(l)) => loc.at(l.span(), &format!("operations[{}].layers", k + 1), &what),
+                    _ => what,
+                },
+            ));
         }
         let key = layer_key(&op.layers);
         if out.contains_key(&key) {

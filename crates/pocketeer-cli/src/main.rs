@@ -5,6 +5,7 @@ mod display;
 mod inspect;
 mod job;
 mod jobfile;
+mod layer_params;
 mod length;
 mod output;
 mod page;
@@ -120,7 +121,13 @@ struct Failure(String);
 fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
     let name = args.file.display();
     let bytes = std::fs::read(&args.file).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
-    let options = ImportOptions {
+    let options = import_options(args);
+    pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}{}", advice(&e))))
+}
+
+/// How to read the drawing, from the drawing flags.
+fn import_options(args: &DrawingArgs) -> ImportOptions {
+    ImportOptions {
         layers: args.layers.clone(),
         units: args.units,
         join_tolerance: args.join_tolerance,
@@ -131,8 +138,7 @@ fn read_analysis(args: &DrawingArgs) -> Result<pocketeer::Analysis, Failure> {
         },
         strict: args.strict,
         ignore_open: args.ignore_open,
-    };
-    pocketeer::analyze(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}{}", advice(&e))))
+    }
 }
 
 /// What the user can do about an import error, in the flags of this command line: the

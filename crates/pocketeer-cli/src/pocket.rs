@@ -17,15 +17,21 @@ pub struct PocketArgs {
     #[command(flatten)]
     drawing: DrawingArgs,
     /// Tool diameter (6, 6mm, 0.25in).
-    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
-    tool_diameter: f64,
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true, required_unless_present = "layer_params")]
+    tool_diameter: Option<f64>,
     /// Distance between neighbouring passes: a length (2.4, 2.4mm) or a share of the tool
     /// diameter (40%); less than the diameter.
     #[arg(long, value_parser = parse_stepover, allow_hyphen_values = true)]
     stepover: Stepover,
     /// Depth of the pocket below the stock top (Z=0), a positive length.
-    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
-    depth: f64,
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true, required_unless_present = "layer_params")]
+    depth: Option<f64>,
+    /// Read milling parameters from layer names: `dxf2gcode` takes layers named
+    /// `MILL: 1 Md: -3 Sd: -1.5 FeedXY: 400 Td: 6 …` (depth, step-down, feeds, tool number and
+    /// diameter, spindle, heights) and pockets each such layer as one operation, the flags
+    /// above as defaults; other layers are not cut.
+    #[arg(long, value_enum, ignore_case = true)]
+    layer_params: Option<LayerParamsArg>,
     /// Largest depth of one pass [default: the whole depth when it is at most the tool
     /// diameter, else equal passes of at most one diameter].
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
@@ -109,6 +115,11 @@ pub struct PocketArgs {
     /// and refuse to write it when it gouges or leaves material.
     #[arg(long)]
     check: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum LayerParamsArg {
+    Dxf2gcode,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -220,7 +231,7 @@ impl Settings {
         let d = Defaults::of(units);
         let diameter = positive(
             "tool-diameter",
-            args.tool_diameter,
+            args.tool_diameter.unwrap_or(f64::NAN),
             "the tool diameter must be positive",
         )?;
         let stepover = match args.stepover {
@@ -229,7 +240,7 @@ impl Settings {
         };
         let depth = positive(
             "depth",
-            args.depth,
+            args.depth.unwrap_or(f64::NAN),
             "the depth must be positive: it is measured down from the stock top (Z=0), e.g. --depth 3",
         )?;
         let step_down = match args.step_down {
@@ -370,6 +381,9 @@ impl Settings {
 
 pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     guard_outputs(args)?;
+    if args.layer_params.is_some() {
+        return run_layer_params(args);
+    }
     let analysis = read_analysis(&args.drawing)?;
     let name = args.drawing.file.display();
     let s = Settings::new(args, JobUnits::of(analysis.drawing.units))?;
@@ -444,6 +458,182 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         output::describe(&args.output)
     );
     Ok(())
+}
+
+/// `--layer-params dxf2gcode`: every `MILL:` layer of the drawing one operation, the
+/// parameters in its name over the flags, all in one program with the tool changes between
+/// them (as `pocketeer job` writes it).
+fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
+    use pocketeer::job::{Job, Operation, Tool};
+    let name = args.drawing.file.display().to_string();
+    let bytes =
+        std::fs::read(&args.drawing.file).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
+    let options = crate::import_options(&args.drawing);
+    let drawing = pocketeer::read_drawing(&bytes, &options).map_err(|e| Failure(format!("{name}: {e}")))?;
+    let units = JobUnits::of(drawing.units);
+    let d = Defaults::of(units);
+    let mm = drawing.units.mm();
+    let mut tools: Vec<Tool> = Vec::new();
+    let mut operations = Vec::new();
+    for layer in &drawing.layers {
+        let Some(p) = crate::layer_params::parse(layer, mm).map_err(|e| Failure(format!("{name}: {e}")))?
+        else {
+            continue;
+        };
+        if !p.unused.is_empty() {
+            crate::print_warnings(&[format!(
+                "layer '{layer}': {} not used (pocketeer cuts from the stock top, Z=0)",
+                p.unused.join(", ")
+            )]);
+        }
+        let diameter = positive(
+            "tool-diameter",
+            p.diameter.or(args.tool_diameter).ok_or_else(|| {
+                Failure(format!(
+                    "{name}: layer '{layer}' gives no tool diameter (Td: D): give one there or with --tool-diameter"
+                ))
+            })?,
+            &format!("layer '{layer}': the tool diameter must be positive"),
+        )?;
+        let depth = positive(
+            "depth",
+            p.depth.or(args.depth).ok_or_else(|| {
+                Failure(format!(
+                    "{name}: layer '{layer}' gives no depth (Md: -D): give one there or with --depth"
+                ))
+            })?,
+            &format!("layer '{layer}': the depth must be positive"),
+        )?;
+        let step_down = match p.step_down.or(args.step_down) {
+            Some(v) => positive(
+                "step-down",
+                v,
+                &format!("layer '{layer}': the step-down must be positive"),
+            )?,
+            None if depth <= diameter => depth,
+            None => diameter,
+        };
+        let feed = positive(
+            "feed",
+            p.feed.or(args.feed).unwrap_or(d.feed),
+            &format!("layer '{layer}': the feed must be positive"),
+        )?;
+        let plunge_feed = positive(
+            "plunge-feed",
+            p.plunge_feed.or(args.plunge_feed).unwrap_or(d.plunge_feed),
+            &format!("layer '{layer}': the plunge feed must be positive"),
+        )?;
+        let spindle = positive(
+            "spindle",
+            p.spindle.unwrap_or(args.spindle),
+            &format!("layer '{layer}': the spindle speed must be positive"),
+        )?;
+        let tool = Tool {
+            number: 0,
+            diameter,
+            feed,
+            plunge_feed,
+            spindle,
+        };
+        let same = |t: &Tool| {
+            t.diameter == tool.diameter
+                && t.feed == feed
+                && t.plunge_feed == plunge_feed
+                && t.spindle == spindle
+        };
+        let number = match p.tool.or(args.tool_number) {
+            Some(n) => n,
+            None => tools.iter().find(|t| same(t)).map_or_else(
+                || tools.iter().map(|t| t.number).max().unwrap_or(0) + 1,
+                |t| t.number,
+            ),
+        };
+        match tools.iter().find(|t| t.number == number) {
+            Some(t) if !same(t) => return Err(Failure(format!(
+                "{name}: layer '{layer}': tool {number} is {} mm across on an earlier layer and {} mm here",
+                crate::display::num(t.diameter, 4),
+                crate::display::num(diameter, 4)
+            ))),
+            Some(_) => {}
+            None => tools.push(Tool { number, ..tool }),
+        }
+        let safe_z = positive(
+            "safe-z",
+            p.safe_z.or(args.safe_z).unwrap_or(d.safe_z),
+            &format!("layer '{layer}': the safe height must be above the stock top"),
+        )?;
+        let feed_height = p
+            .feed_height
+            .or(args.feed_height)
+            .unwrap_or(d.feed_height)
+            .clamp(0.0, safe_z);
+        let stepover = match args.stepover {
+            Stepover::Length(v) => v,
+            Stepover::Percent(pc) => diameter * pc / 100.0,
+        };
+        operations.push(Operation {
+            layers: vec![layer.clone()],
+            tool: number,
+            stepover,
+            allowance: args.allowance,
+            link: LinkParams {
+                depth,
+                step_down,
+                safe_z,
+                feed_height,
+                direction: match args.direction {
+                    DirectionArg::Climb => Direction::Climb,
+                    DirectionArg::Conventional => Direction::Conventional,
+                },
+                entry: match args.entry {
+                    EntryArg::Helix => Entry::Helix,
+                    EntryArg::Ramp => Entry::Ramp,
+                    EntryArg::Plunge => Entry::Plunge,
+                },
+                ramp_angle: args.ramp_angle.to_radians(),
+                time: pocketeer::machining_time::TimeModel {
+                    feed,
+                    plunge_feed,
+                    rapid: args.rapid_rate.unwrap_or(d.rapid_rate),
+                    per_retract: args.retract_time,
+                },
+            },
+            rest: false,
+        });
+    }
+    if operations.is_empty() {
+        return Err(Failure(format!(
+            "{name}: --layer-params dxf2gcode: no layer is named 'MILL: …' (its layers: {})",
+            drawing.layers.join(", ")
+        )));
+    }
+    let loaded = crate::job::Loaded::new(
+        Job { tools, operations },
+        args.drawing.file.clone(),
+        args.output.clone(),
+        match args.post {
+            PostArg::Grbl => Dialect::Grbl,
+            PostArg::Linuxcnc => Dialect::LinuxCnc,
+            PostArg::Mach3 => Dialect::Mach3,
+        },
+        match args.coolant {
+            CoolantArg::Off => Coolant::Off,
+            CoolantArg::Flood => Coolant::Flood,
+            CoolantArg::Mist => Coolant::Mist,
+        },
+        args.spindle_wait,
+        args.rapid_rate.unwrap_or(d.rapid_rate),
+        args.retract_time,
+        options,
+    );
+    let analyses = crate::job::analyses(None, &loaded, &bytes)?;
+    crate::job::execute(
+        &loaded,
+        &analyses,
+        &args.drawing.file,
+        args.preview.as_deref(),
+        &|e| format!("{name}: {e}"),
+    )
 }
 
 /// The program's header: every setting needed to make it again, in the job's unit, and the

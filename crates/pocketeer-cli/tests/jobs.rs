@@ -249,3 +249,72 @@ fn check_replays_a_job_layer_by_layer_with_each_tool() {
     assert_eq!(out.status.code(), Some(1), "{report}");
     assert!(report.contains("CUT TOO DEEP"), "{report}");
 }
+
+#[test]
+fn dxf2gcode_layer_names_pocket_without_a_job_file() {
+    let plate = std::fs::read_to_string(common::repo().join("examples/plate.dxf")).unwrap();
+    let named = plate
+        .lines()
+        .map(|l| match l {
+            "SHALLOW" => "MILL: 1 Md: -3 Td: 6 FeedXY: 1200 FeedZ: 300",
+            "DEEP" => "MILL: 2 TiefeGesamt: -6 Sd: -2 Wd: 2 Vxy: 600 T: 2 S: 18000",
+            other => other,
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let dir = tempfile::tempdir().unwrap();
+    let drawing = dir.path().join("named.dxf");
+    std::fs::write(&drawing, named).unwrap();
+    let nc = dir.path().join("named.nc");
+    let out = common::run(&[
+        "pocket",
+        drawing.to_str().unwrap(),
+        "--layer-params",
+        "dxf2gcode",
+        "--stepover",
+        "40%",
+        "--post",
+        "linuxcnc",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&nc).unwrap();
+    assert!(
+        text.contains("T1 M6") && text.contains("T2 M6\nG43 H2\nM3 S18000"),
+        "{text}"
+    );
+    let p = pocketeer::simulate::read_program(&text).unwrap();
+    let change = text[..text.find("T2 M6").unwrap()].lines().count();
+    let lowest = |after: bool| {
+        p.moves
+            .iter()
+            .filter(|m| (m.line > change) == after)
+            .map(|m| m.to.z)
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!((lowest(false) + 3.0).abs() < 1e-9, "the first layer 3 mm deep");
+    assert!((lowest(true) + 6.0).abs() < 1e-9, "the second 6 mm deep");
+    assert!(
+        p.moves.iter().any(|m| m.line > change && m.feed == Some(600.0)),
+        "Vxy: 600"
+    );
+    // Without the flag, such a drawing needs a tool and a depth; with it, a drawing with no
+    // MILL: layer is refused naming its layers.
+    let out = common::run(&[
+        "pocket",
+        "examples/plate.dxf",
+        "--layer-params",
+        "dxf2gcode",
+        "--stepover",
+        "2",
+        "-o",
+        nc.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no layer is named 'MILL: …'") && err.contains("SHALLOW"),
+        "{err}"
+    );
+}
