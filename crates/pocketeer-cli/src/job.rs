@@ -36,6 +36,7 @@ pub struct Loaded {
     dialect: Dialect,
     coolant: Coolant,
     spindle_wait: f64,
+    park: Option<pocketeer::geom::Point>,
     pub rapid_rate: f64,
     pub retract_time: f64,
     options: ImportOptions,
@@ -65,11 +66,18 @@ impl Loaded {
             dialect,
             coolant,
             spindle_wait,
+            park: None,
             rapid_rate,
             retract_time,
             options,
             keys,
         }
+    }
+
+    /// Where to move at the end.
+    pub fn with_park(mut self, park: Option<pocketeer::geom::Point>) -> Loaded {
+        self.park = park;
+        self
     }
 }
 
@@ -213,6 +221,7 @@ pub fn execute(
         header,
         spindle_wait: loaded.spindle_wait,
         coolant: loaded.coolant,
+        park: loaded.park,
         ..ProgramSettings::default()
     };
     let program = write_gcode_tools(&sections, &settings, loaded.dialect);
@@ -465,6 +474,13 @@ fn load(file: &JobFile, loc: &Locator, base: &Path) -> Result<Loaded, String> {
             "a wait is zero seconds or more",
         ));
     }
+    let park = match &file.park {
+        None => None,
+        Some(p) => {
+            let (x, y) = crate::length::parse_point(p.get_ref()).map_err(|e| loc.at(p.span(), "park", &e))?;
+            Some(pocketeer::geom::Point::new(x, y))
+        }
+    };
     Ok(Loaded {
         job: Job { tools, operations },
         drawing: base.join(file.drawing.get_ref()),
@@ -472,6 +488,7 @@ fn load(file: &JobFile, loc: &Locator, base: &Path) -> Result<Loaded, String> {
         dialect,
         coolant,
         spindle_wait,
+        park,
         rapid_rate: file
             .rapid_rate
             .as_ref()

@@ -62,6 +62,7 @@ pub struct JobFile {
     pub ignore_open: Option<bool>,
     pub coolant: Option<Spanned<String>>,
     pub spindle_wait: Option<Spanned<f64>>,
+    pub park: Option<Spanned<String>>,
     pub rapid_rate: Option<Spanned<Quantity>>,
     pub retract_time: Option<Spanned<f64>>,
     #[serde(default)]
@@ -247,6 +248,7 @@ output = "plate.nc"            # the program to write
 post = "linuxcnc"              # grbl, linuxcnc or mach3
 # coolant = "flood"            # off, flood or mist
 # spindle-wait = 2             # seconds after each spindle start
+# park = "-10,150"             # X,Y to move to at the safe height at the end
 # rapid-rate = "5000mm/min"    # for the time estimate
 # retract-time = 0.5           # seconds each retract costs in the estimate
 # units = "mm"                 # the drawing's unit, where it declares none

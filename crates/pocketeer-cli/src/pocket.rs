@@ -549,11 +549,13 @@ fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
             ),
         };
         match tools.iter().find(|t| t.number == number) {
-            Some(t) if !same(t) => return Err(Failure(format!(
+            Some(t) if !same(t) => {
+                return Err(Failure(format!(
                 "{name}: layer '{layer}': tool {number} is {} mm across on an earlier layer and {} mm here",
                 crate::display::num(t.diameter, 4),
                 crate::display::num(diameter, 4)
-            ))),
+            )))
+            }
             Some(_) => {}
             None => tools.push(Tool { number, ..tool }),
         }
@@ -625,7 +627,8 @@ fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
         args.rapid_rate.unwrap_or(d.rapid_rate),
         args.retract_time,
         options,
-    );
+    )
+    .with_park(args.park.map(|(x, y)| pocketeer::geom::Point::new(x, y)));
     let analyses = crate::job::analyses(None, &loaded, &bytes)?;
     crate::job::execute(
         &loaded,

@@ -320,3 +320,32 @@ fn pockets_not_cut_open_chains_and_repairs_are_marked() {
     assert_eq!(v["moves"], t["moves"]);
     assert_eq!(v["drawn"], t["moves"]);
 }
+
+#[test]
+fn the_example_jobs_page_follows_its_tool_change() {
+    let Some(bin) = browser() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    for f in ["plate.dxf", "plate.toml"] {
+        std::fs::copy(common::repo().join("examples").join(f), dir.path().join(f)).unwrap();
+    }
+    let page = dir.path().join("plate.html");
+    let out = common::run(&[
+        "job",
+        dir.path().join("plate.toml").to_str().unwrap(),
+        "--preview",
+        page.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let t = self_test(&bin, &page);
+    assert_eq!(t["problems"].as_array().unwrap().len(), 0, "{t}");
+    let (moves, retracts, _) = program_figures(&dir.path().join("plate.nc"));
+    assert_eq!(t["moves"], moves);
+    assert_eq!(t["drawn"], moves);
+    assert_eq!(row(&t, "retracts"), retracts.to_string());
+    // At the last move the 2 mm tool is in the spindle.
+    assert!(
+        t["readout"].as_str().unwrap().contains("tool 2.000 mm across"),
+        "{t}"
+    );
+    assert!(row(&t, "operation 3").contains("tool 2 (2 mm)"), "{t}");
+}
