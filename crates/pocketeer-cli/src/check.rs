@@ -221,7 +221,22 @@ fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
     let name = args.program.display().to_string();
     let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
     let text = String::from_utf8_lossy(&text);
-    let program = read_program(&text).map_err(|e| Failure(format!("{name}: {e}")))?;
+    let tolerances = (args.gouge_tolerance, args.leftover_tolerance);
+    let (report, passed) = job_report(&loaded, &analyses, &name, &text, tolerances)?;
+    emit(&report)?;
+    Ok(if passed { Verdict::Passed } else { Verdict::Failed })
+}
+
+/// The report of a job's program `text` (named `name`), and whether it passed, with the
+/// gouge and leftover tolerances given.
+pub fn job_report(
+    loaded: &crate::job::Loaded,
+    analyses: &crate::job::Analyses,
+    name: &str,
+    text: &str,
+    (gouge_tolerance, leftover_tolerance): (f64, f64),
+) -> Result<(String, bool), Failure> {
+    let program = read_program(text).map_err(|e| Failure(format!("{name}: {e}")))?;
     // Where each operation's moves start: its comment after the header.
     let header_end = text
         .lines()
@@ -303,8 +318,8 @@ fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
         let params = CheckParams {
             tool_radius: r_min,
             depth: Some(depth),
-            gouge_tolerance: args.gouge_tolerance,
-            leftover_tolerance: args.leftover_tolerance,
+            gouge_tolerance,
+            leftover_tolerance,
             rapid_rate: loaded.rapid_rate,
             per_retract: loaded.retract_time,
         };
@@ -339,8 +354,7 @@ fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
         passed &= report.passed && !deeper;
     }
     let _ = writeln!(out, "{}", if passed { "JOB PASSED" } else { "JOB FAILED" });
-    emit(&out)?;
-    Ok(if passed { Verdict::Passed } else { Verdict::Failed })
+    Ok((out, passed))
 }
 
 fn file_name(p: &std::path::Path) -> String {

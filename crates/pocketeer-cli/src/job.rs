@@ -26,6 +26,10 @@ pub struct JobArgs {
     /// Also write an interactive preview: one self-contained HTML page.
     #[arg(long)]
     preview: Option<PathBuf>,
+    /// Replay the program layer by layer before writing it (as `pocketeer check JOB PROGRAM`
+    /// does) and refuse to write it when it gouges, leaves material or cuts too deep.
+    #[arg(long)]
+    check: bool,
 }
 
 /// A job file read and checked: the library's job, and what the program needs besides.
@@ -124,19 +128,22 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
         name: &name,
         text: &text,
     };
-    execute(&loaded, &analyses, path, args.preview.as_deref(), &|e| {
+    let check = args.check.then_some(name.as_str());
+    execute(&loaded, &analyses, path, args.preview.as_deref(), check, &|e| {
         located(&loc, &loaded, e)
     })
 }
 
 /// Runs a job read and checked (from a job file, or from a drawing's layer names) and writes
 /// its program, and its preview when asked; `source` names it in the header and the title,
-/// `locate` words the library's errors.
+/// `locate` words the library's errors. With `check` (the job's name), the program is
+/// replayed first and not written when the check fails.
 pub fn execute(
     loaded: &Loaded,
     analyses: &Analyses,
     source: &Path,
     preview_page: Option<&Path>,
+    check: Option<&str>,
     locate: &dyn Fn(&JobError) -> String,
 ) -> Result<(), Failure> {
     let path = source;
@@ -227,6 +234,20 @@ pub fn execute(
     let program = write_gcode_tools(&sections, &settings, loaded.dialect);
     let read = pocketeer::simulate::read_program(&program)
         .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
+    if let Some(job) = check {
+        let tolerances = (
+            pocketeer::simulate::check::GOUGE_TOLERANCE,
+            pocketeer::simulate::check::LEFTOVER_TOLERANCE,
+        );
+        let (report, passed) = crate::check::job_report(loaded, analyses, job, &program, tolerances)?;
+        eprint!("{report}");
+        if !passed {
+            return Err(Failure(format!(
+                "{job}: the check failed; {} not written",
+                output::describe(&loaded.output)
+            )));
+        }
+    }
     if let Some(page) = preview_page {
         let doc = preview(loaded, &results, analyses, &read, path)?;
         output::write_atomic(page, doc.as_bytes()).map_err(Failure)?;

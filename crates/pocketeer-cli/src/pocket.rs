@@ -630,11 +630,13 @@ fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
     )
     .with_park(args.park.map(|(x, y)| pocketeer::geom::Point::new(x, y)));
     let analyses = crate::job::analyses(None, &loaded, &bytes)?;
+    let check = args.check.then_some(name.as_str());
     crate::job::execute(
         &loaded,
         &analyses,
         &args.drawing.file,
         args.preview.as_deref(),
+        check,
         &|e| format!("{name}: {e}"),
     )
 }

@@ -318,3 +318,24 @@ fn dxf2gcode_layer_names_pocket_without_a_job_file() {
         "{err}"
     );
 }
+
+#[test]
+fn job_check_replays_before_writing() {
+    let job = std::fs::read_to_string(common::repo().join("examples/plate.toml")).unwrap();
+    let (dir, path) = job_dir(&job);
+    let out = common::run(&["job", path.to_str().unwrap(), "--check"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("JOB PASSED"), "{err}");
+    assert!(dir.path().join("plate.nc").exists());
+    // A job whose small tool goes only 1 mm into the SHALLOW layer leaves the slot's floor:
+    // refused, nothing written.
+    let short = job.replacen("tool = 2\ndepth = \"3mm\"", "tool = 2\ndepth = \"1mm\"", 1);
+    assert_ne!(short, job);
+    let (dir, path) = job_dir(&short);
+    let out = common::run(&["job", path.to_str().unwrap(), "--check"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("the check failed"), "{err}");
+    assert!(!dir.path().join("plate.nc").exists());
+}
