@@ -56,6 +56,21 @@ pub enum Verdict {
     Failed,
 }
 
+/// Refuses a rapid rate that is not positive and a retract cost below zero.
+pub fn rates_valid(rapid_rate: f64, retract_time: f64) -> Result<(), Failure> {
+    if !(rapid_rate.is_finite() && rapid_rate > 0.0) {
+        return Err(Failure(format!(
+            "--rapid-rate {rapid_rate}: the rapid rate must be positive"
+        )));
+    }
+    if !(retract_time.is_finite() && retract_time >= 0.0) {
+        return Err(Failure(format!(
+            "--retract-time {retract_time}: a retract costs zero seconds or more"
+        )));
+    }
+    Ok(())
+}
+
 /// `T=D`: a tool number and its diameter.
 fn parse_tool(s: &str) -> Result<(u32, f64), String> {
     let (t, d) = s
@@ -100,18 +115,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
             "--depth {d}: the depth must be positive: it is measured down from the stock top (Z=0)"
         )));
     }
-    if !(args.rapid_rate.is_finite() && args.rapid_rate > 0.0) {
-        return Err(Failure(format!(
-            "--rapid-rate {}: the rapid rate must be positive",
-            args.rapid_rate
-        )));
-    }
-    if !(args.retract_time.is_finite() && args.retract_time >= 0.0) {
-        return Err(Failure(format!(
-            "--retract-time {}: a retract costs zero seconds or more",
-            args.retract_time
-        )));
-    }
+    rates_valid(args.rapid_rate, args.retract_time)?;
     let mut outputs = Vec::new();
     if let Some(svg) = &args.svg {
         outputs.push(("--svg", svg.as_path()));

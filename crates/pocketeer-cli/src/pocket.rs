@@ -135,6 +135,25 @@ enum EntryArg {
     Plunge,
 }
 
+impl From<DirectionArg> for Direction {
+    fn from(d: DirectionArg) -> Direction {
+        match d {
+            DirectionArg::Climb => Direction::Climb,
+            DirectionArg::Conventional => Direction::Conventional,
+        }
+    }
+}
+
+impl From<EntryArg> for Entry {
+    fn from(e: EntryArg) -> Entry {
+        match e {
+            EntryArg::Helix => Entry::Helix,
+            EntryArg::Ramp => Entry::Ramp,
+            EntryArg::Plunge => Entry::Plunge,
+        }
+    }
+}
+
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum PostArg {
     Grbl,
@@ -337,15 +356,8 @@ impl Settings {
             step_down: self.step_down,
             safe_z: self.safe_z,
             feed_height: self.feed_height,
-            direction: match args.direction {
-                DirectionArg::Climb => Direction::Climb,
-                DirectionArg::Conventional => Direction::Conventional,
-            },
-            entry: match args.entry {
-                EntryArg::Helix => Entry::Helix,
-                EntryArg::Ramp => Entry::Ramp,
-                EntryArg::Plunge => Entry::Plunge,
-            },
+            direction: args.direction.into(),
+            entry: args.entry.into(),
             ramp_angle: args.ramp_angle.to_radians(),
             time: pocketeer::machining_time::TimeModel {
                 feed: self.feed,
@@ -583,15 +595,8 @@ fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
                 step_down,
                 safe_z,
                 feed_height,
-                direction: match args.direction {
-                    DirectionArg::Climb => Direction::Climb,
-                    DirectionArg::Conventional => Direction::Conventional,
-                },
-                entry: match args.entry {
-                    EntryArg::Helix => Entry::Helix,
-                    EntryArg::Ramp => Entry::Ramp,
-                    EntryArg::Plunge => Entry::Plunge,
-                },
+                direction: args.direction.into(),
+                entry: args.entry.into(),
                 ramp_angle: args.ramp_angle.to_radians(),
                 time: pocketeer::machining_time::TimeModel {
                     feed,

@@ -1,5 +1,6 @@
 //! `pocketeer view`: the interactive preview of any G-code program over its drawing.
 
+use crate::check::rates_valid;
 use crate::length::{parse_length, parse_rate};
 use crate::{output, read_analysis, DrawingArgs, Failure};
 use clap::Args;
@@ -33,18 +34,7 @@ pub fn run(args: &ViewArgs) -> Result<(), Failure> {
             args.tool_diameter
         )));
     }
-    if !(args.rapid_rate.is_finite() && args.rapid_rate > 0.0) {
-        return Err(Failure(format!(
-            "--rapid-rate {}: the rapid rate must be positive",
-            args.rapid_rate
-        )));
-    }
-    if !(args.retract_time.is_finite() && args.retract_time >= 0.0) {
-        return Err(Failure(format!(
-            "--retract-time {}: a retract costs zero seconds or more",
-            args.retract_time
-        )));
-    }
+    rates_valid(args.rapid_rate, args.retract_time)?;
     output::guard(&[&args.drawing.file, &args.program], &[("-o", &args.output)]).map_err(Failure)?;
     let analysis = read_analysis(&args.drawing)?;
     let program = read_program(&args.program)?;
