@@ -175,7 +175,7 @@ pub fn execute(
         .iter()
         .map(|r| {
             let op = &loaded.job.operations[r.operation];
-            format!(
+            let remark = format!(
                 "operation {}: layers {}, depth {} mm, tool {}, {} mm{}",
                 r.operation + 1,
                 op.layers.join(", "),
@@ -183,7 +183,8 @@ pub fn execute(
                 r.tool.number,
                 crate::display::num(r.tool.diameter, 4),
                 if op.rest { ", rest" } else { "" }
-            )
+            );
+            short(&remark, REMARK_CHARS)
         })
         .collect();
     let mut sections = Vec::new();
@@ -273,6 +274,20 @@ pub fn execute(
 }
 
 /// A layer set as a map key: names in lower case, sorted.
+/// Longest section remark, characters: with its parentheses within GRBL's 80 a line (long
+/// layer names, as dxf2gcode's, are cut).
+const REMARK_CHARS: usize = 72;
+
+/// `s`, cut to `n` characters with "..." where it was longer.
+fn short(s: &str, n: usize) -> String {
+    if s.chars().count() <= n {
+        return s.to_string();
+    }
+    let mut t: String = s.chars().take(n.saturating_sub(3)).collect();
+    t.push_str("...");
+    t
+}
+
 fn is_toml(p: &Path) -> bool {
     p.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }
