@@ -31,8 +31,9 @@ fn main() {
         let chains = pocketeer::import::chain(&drawing.elements, &tol, options.close_gaps);
         chain.push(t.elapsed().as_secs_f64());
         let t = Instant::now();
-        let nesting = pocketeer::import::find_pockets(&chains.contours, &drawing.layers, &tol, Some(options.fill))
-            .expect("the contours nest");
+        let nesting =
+            pocketeer::import::find_pockets(&chains.contours, &drawing.layers, &tol, Some(options.fill))
+                .expect("the contours nest");
         nest.push(t.elapsed().as_secs_f64());
         std::hint::black_box(nesting);
     }

@@ -11,9 +11,8 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(7464);
     let side = (n as f64).sqrt().ceil() as usize;
-    let mut s = String::from(
-        "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n",
-    );
+    let mut s =
+        String::from("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
     // A small deterministic generator: the same drawing on every run.
     let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
     let mut rnd = move || {
