@@ -137,6 +137,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         rapid_rate: args.rapid_rate,
         per_retract: args.retract_time,
     };
+    let spinner = crate::progress::Spinner::start("replaying the program");
     let radii = if args.tools.is_empty() {
         vec![(0, params.tool_radius)]
     } else {
@@ -150,6 +151,7 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
         &analysis.tolerance,
     )
     .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
+    drop(spinner);
     if let Some(path) = &args.svg {
         output::write_atomic(
             path,
@@ -226,7 +228,9 @@ fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
     let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
     let text = String::from_utf8_lossy(&text);
     let tolerances = (args.gouge_tolerance, args.leftover_tolerance);
+    let spinner = crate::progress::Spinner::start("replaying the program");
     let (report, passed) = job_report(&loaded, &analyses, &name, &text, tolerances)?;
+    drop(spinner);
     emit(&report)?;
     Ok(if passed { Verdict::Passed } else { Verdict::Failed })
 }

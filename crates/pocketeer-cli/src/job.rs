@@ -6,7 +6,7 @@ use crate::jobfile::{self, JobFile, Locator, OperationKeys};
 use crate::{output, Failure};
 use clap::Args;
 use pocketeer::import::{FillRule, Units};
-use pocketeer::job::{run_job, Job, JobError, Operation, Tool};
+use pocketeer::job::{Job, JobError, Operation, Tool};
 use pocketeer::post::{write_gcode_tools, Coolant, Dialect, ProgramSettings, ProgramUnits};
 use pocketeer::{Analysis, ImportOptions};
 use std::collections::BTreeMap;
@@ -148,12 +148,18 @@ pub fn execute(
 ) -> Result<(), Failure> {
     let path = source;
     let key = |layers: &[String]| layer_key(layers);
-    let results = run_job(&loaded.job, &|layers: &[String]| {
-        analyses
-            .get(&key(layers))
-            .map(|a| (a.nesting.pockets.as_slice(), &a.tolerance))
-    })
+    let spinner = crate::progress::Spinner::start("planning");
+    let results = pocketeer::job::run_job_with(
+        &loaded.job,
+        &|layers: &[String]| {
+            analyses
+                .get(&key(layers))
+                .map(|a| (a.nesting.pockets.as_slice(), &a.tolerance))
+        },
+        &spinner,
+    )
     .map_err(|e| Failure(locate(&e)))?;
+    drop(spinner);
     for r in &results {
         let Some(p) = &r.pocketed else {
             eprintln!(
@@ -240,7 +246,9 @@ pub fn execute(
             pocketeer::simulate::check::GOUGE_TOLERANCE,
             pocketeer::simulate::check::LEFTOVER_TOLERANCE,
         );
+        let spinner = crate::progress::Spinner::start("checking the program");
         let (report, passed) = crate::check::job_report(loaded, analyses, job, &program, tolerances)?;
+        drop(spinner);
         eprint!("{report}");
         if !passed {
             return Err(Failure(format!(

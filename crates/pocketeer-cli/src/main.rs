@@ -11,6 +11,7 @@ mod output;
 mod page;
 mod pocket;
 mod preview;
+mod progress;
 mod sanity;
 mod view;
 
@@ -24,6 +25,9 @@ use std::process::ExitCode;
 #[derive(Parser)]
 #[command(name = "pocketeer", version, about, args_override_self = true)]
 struct Cli {
+    /// No progress on the terminal (warnings and the summary still print).
+    #[arg(long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -264,6 +268,7 @@ fn emit(text: &str) -> Result<(), Failure> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    progress::QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
     let result = match &cli.command {
         Command::Inspect(args) => inspect(args),
         Command::Offset(args) => offset(args),

@@ -396,21 +396,28 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     if args.layer_params.is_some() {
         return run_layer_params(args);
     }
+    let spinner = crate::progress::Spinner::start("reading the drawing");
     let analysis = read_analysis(&args.drawing)?;
     let name = args.drawing.file.display();
     let s = Settings::new(args, JobUnits::of(analysis.drawing.units))?;
     let mut warnings = crate::inspect::import_warnings(&analysis);
     warnings.extend(crate::sanity::size_warnings(&analysis));
-    crate::print_warnings(&warnings);
+    spinner.bar_suspend(|| crate::print_warnings(&warnings));
     let tol = &analysis.tolerance;
-    let job = pocketeer::job::pocket_job(&analysis.nesting.pockets, &s.clear(args), &s.link(args), tol)
-        .map_err(|e| match e {
-            pocketeer::job::JobError::ToolFitsNowhere { .. } => Failure(format!(
-                "{name}: {e}; {}",
-                crate::sanity::unit_advice(&analysis, false)
-            )),
-            e => Failure(format!("{name}: {e}")),
-        })?;
+    let job = pocketeer::job::pocket_job_with(
+        &analysis.nesting.pockets,
+        &s.clear(args),
+        &s.link(args),
+        tol,
+        &spinner,
+    )
+    .map_err(|e| match e {
+        pocketeer::job::JobError::ToolFitsNowhere { .. } => Failure(format!(
+            "{name}: {e}; {}",
+            crate::sanity::unit_advice(&analysis, false)
+        )),
+        e => Failure(format!("{name}: {e}")),
+    })?;
     // The figures do not depend on the header: estimate them first, then write the header.
     let figures = estimate(
         &job.linked.toolpath,
@@ -421,9 +428,11 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
     let loops: usize = job.plans.iter().map(|p| p.loop_count()).sum();
     let passes = pocketeer::link::pass_depths(s.depth, s.step_down).len();
     let header = header(args, &s, &analysis, loops, passes, &figures);
+    spinner.stage("writing the program");
     let program = write_gcode(&job.linked.toolpath, &s.program(args, header), s.dialect);
     let report = if args.check {
-        Some(self_check(args, &s, &analysis, &program)?)
+        spinner.stage("checking the program");
+        Some(self_check(args, &s, &analysis, &program, &spinner)?)
     } else {
         None
     };
@@ -446,6 +455,7 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         output::write_atomic(path, doc.as_bytes()).map_err(Failure)?;
     }
     output::write_output(&args.output, program.as_bytes()).map_err(Failure)?;
+    drop(spinner);
     crate::print_warnings(&after);
     let u = s.units;
     let extent = &analysis.drawing.extent;
@@ -779,6 +789,7 @@ fn self_check(
     s: &Settings,
     analysis: &pocketeer::Analysis,
     program: &str,
+    spinner: &crate::progress::Spinner,
 ) -> Result<pocketeer::simulate::CheckReport, Failure> {
     let name = args.drawing.file.display();
     let params = pocketeer::simulate::CheckParams {
@@ -794,7 +805,7 @@ fn self_check(
     let report =
         pocketeer::simulate::check_program(&analysis.nesting.pockets, &read, &params, &analysis.tolerance)
             .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
-    eprint!("{}", crate::check::to_text(&report, &params));
+    spinner.bar_suspend(|| eprint!("{}", crate::check::to_text(&report, &params)));
     if report.passed {
         return Ok(report);
     }

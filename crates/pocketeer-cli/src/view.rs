@@ -52,7 +52,9 @@ pub fn run(args: &ViewArgs) -> Result<(), Failure> {
         check: None,
         report: warnings.join("\n"),
     };
+    let spinner = crate::progress::Spinner::start("drawing the page");
     let doc = crate::page::html(&analysis, &program, &context);
+    drop(spinner);
     output::write_atomic(&args.output, doc.as_bytes()).map_err(Failure)?;
     eprintln!(
         "{} moves shown; written to {}",

@@ -454,3 +454,61 @@ fn check_json_carries_the_engagement_distribution() {
     .unwrap();
     assert!(text.contains("tool engagement           max "), "{text}");
 }
+
+/// Runs `pocketeer args` on a terminal (util-linux's `script`), progress shown at once; its
+/// transcript, or `None` where `script` is missing.
+fn on_a_terminal(args: &str) -> Option<String> {
+    let bin = env!("CARGO_BIN_EXE_pocketeer");
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("typescript");
+    let out = std::process::Command::new("script")
+        .arg("-qec")
+        .arg(format!("{bin} {args}"))
+        .arg(&log)
+        .env("POCKETEER_PROGRESS_DELAY_MS", "0")
+        .current_dir(common::repo())
+        .output()
+        .ok()?;
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    Some(String::from_utf8_lossy(&std::fs::read(&log).unwrap()).into_owned())
+}
+
+#[test]
+fn progress_shows_on_a_terminal_and_nowhere_else() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("b.nc");
+    let args = format!(
+        "pocket examples/bracket.dxf --tool-diameter 6 --stepover 2.4 --depth 2 --check -o {}",
+        nc.display()
+    );
+    let Some(shown) = on_a_terminal(&args) else {
+        panic!("util-linux's script is needed for this test");
+    };
+    assert!(
+        [
+            "reading the drawing",
+            "planning pockets",
+            "linking",
+            "writing the program",
+            "checking the program"
+        ]
+        .iter()
+        .any(|s| shown.contains(s)),
+        "{shown}"
+    );
+    let quiet = on_a_terminal(&format!("--quiet {args}")).unwrap();
+    assert!(
+        !quiet.contains("planning pockets") && !quiet.contains("checking the program"),
+        "{quiet}"
+    );
+    // Not a terminal: the same run prints no progress at all.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pocketeer"))
+        .args(args.split(' '))
+        .env("POCKETEER_PROGRESS_DELAY_MS", "0")
+        .current_dir(common::repo())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success());
+    assert!(!err.contains("planning pockets") && !err.contains('\r'), "{err}");
+}

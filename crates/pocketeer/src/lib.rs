@@ -70,6 +70,7 @@ pub mod machining_time;
 pub mod offset;
 mod parallel;
 pub mod post;
+pub mod progress;
 pub mod simulate;
 pub mod toolpath;
 mod union_find;

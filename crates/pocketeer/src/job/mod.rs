@@ -6,7 +6,7 @@
 
 mod operations;
 
-pub use operations::{run_job, Job, Operation, OperationResult, PocketsOn, Tool};
+pub use operations::{run_job, run_job_with, Job, Operation, OperationResult, PocketsOn, Tool};
 
 use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
 use crate::geom::PreparedPocket;
@@ -100,12 +100,31 @@ pub fn pocket_job(
     link_params: &LinkParams,
     tol: &Tolerance,
 ) -> Result<PocketJob, JobError> {
+    pocket_job_with(pockets, clear, link_params, tol, &crate::progress::Silent)
+}
+
+/// [`pocket_job`], telling `progress` of its stages: planning (a step per pocket) and linking
+/// (the loops planned).
+pub fn pocket_job_with(
+    pockets: &[Pocket],
+    clear: &ClearParams,
+    link_params: &LinkParams,
+    tol: &Tolerance,
+    progress: &dyn crate::progress::Progress,
+) -> Result<PocketJob, JobError> {
     link_params.check()?;
     let prepared: Vec<PreparedPocket> = pockets.iter().map(PreparedPocket::new).collect();
+    progress.stage("planning pockets", Some(pockets.len() as u64));
     let plans = prepared
         .iter()
-        .map(|p| plan_prepared(p, clear, tol))
+        .map(|p| {
+            let plan = plan_prepared(p, clear, tol);
+            progress.advance(1);
+            plan
+        })
         .collect::<Result<Vec<_>, _>>()?;
+    let loops: usize = plans.iter().map(ClearPlan::loop_count).sum();
+    progress.stage(&format!("linking {loops} loops"), None);
     if !pockets.is_empty() && plans.iter().all(|p| p.parts.is_empty()) {
         return Err(JobError::ToolFitsNowhere {
             diameter: 2.0 * clear.tool_radius,

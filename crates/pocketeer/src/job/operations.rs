@@ -2,7 +2,7 @@
 //! job's library, to its own depth; the operations run in order, and the program changes
 //! tools between them.
 
-use super::{pocket_job, JobError, PocketJob};
+use super::{JobError, PocketJob};
 use crate::clear::ClearParams;
 use crate::geom::{Pocket, Tolerance};
 use crate::link::LinkParams;
@@ -114,6 +114,15 @@ pub type PocketsOn<'a> = dyn Fn(&[String]) -> Option<(&'a [Pocket], &'a Toleranc
 
 /// Runs the operations of `job` in order on the pockets `pockets_on` gives for their layers.
 pub fn run_job<'a>(job: &Job, pockets_on: &PocketsOn<'a>) -> Result<Vec<OperationResult>, JobError> {
+    run_job_with(job, pockets_on, &crate::progress::Silent)
+}
+
+/// [`run_job`], telling `progress` of each operation's stages.
+pub fn run_job_with<'a>(
+    job: &Job,
+    pockets_on: &PocketsOn<'a>,
+    progress: &dyn crate::progress::Progress,
+) -> Result<Vec<OperationResult>, JobError> {
     let mut numbers: Vec<u32> = job.tools.iter().map(|t| t.number).collect();
     numbers.sort_unstable();
     if let Some(w) = numbers.windows(2).find(|w| w[0] == w[1]) {
@@ -178,7 +187,8 @@ pub fn run_job<'a>(job: &Job, pockets_on: &PocketsOn<'a>) -> Result<Vec<Operatio
         let mut link = op.link;
         link.time.feed = tool.feed;
         link.time.plunge_feed = tool.plunge_feed;
-        let pocketed = match pocket_job(pockets, &clear, &link, tol) {
+        progress.stage(&format!("operation {}", k + 1), None);
+        let pocketed = match super::pocket_job_with(pockets, &clear, &link, tol, progress) {
             Ok(p) => p,
             // Rest pieces too narrow for the tool (slivers the larger tools' rounding left).
             Err(JobError::ToolFitsNowhere { .. }) if op.rest => {
