@@ -165,7 +165,7 @@ fn program_summary(program: &Program, c: &Context) -> Vec<(String, String)> {
 }
 
 /// Gouges and leftovers thinner than this (mm) are not marked: the check's own rounding.
-const SHOWN: f64 = 1e-3;
+const SHOWN: f64 = 5e-3;
 
 /// Marks for what a check found: gouges and thickest leftovers over the tolerances, rapids
 /// into the stock and plunges (the first few of each).

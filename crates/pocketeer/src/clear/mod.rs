@@ -229,6 +229,38 @@ mod tests {
     }
 
     #[test]
+    fn an_island_whose_loop_touches_the_wall_loop_is_kept() {
+        // A 1 mm island 2 mm from the end of an 11 mm wide channel: for a 2 mm tool its loop
+        // (radius 2) touches the end of the wall's loop at a point. A bar splits the level
+        // into two parts, so the loop's owner is looked for (it was dropped when its first
+        // point was the point of contact, leaving a ring of material round the island).
+        let p = Point::new;
+        let bar = Contour::polygon(&[p(18.0, 0.5), p(18.0, 10.5), p(20.0, 10.5), p(20.0, 0.5)]);
+        for start in [0.0, 1.0, std::f64::consts::PI] {
+            let island = Contour::new(vec![Segment::Arc(Arc::new(
+                p(37.0, 5.5),
+                1.0,
+                start,
+                -std::f64::consts::TAU,
+            ))]);
+            let pocket = Pocket {
+                boundary: rect(40.0, 11.0),
+                islands: vec![island, bar.clone()],
+            };
+            let params = ClearParams {
+                tool_radius: 1.0,
+                stepover: 0.8,
+                allowance: 0.0,
+            };
+            let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+            let roots: Vec<&Part> = plan.roots.iter().map(|&i| &plan.parts[i]).collect();
+            assert_eq!(roots.len(), 2, "the bar splits the first level");
+            let holes: usize = roots.iter().map(|r| r.holes.len()).sum();
+            assert_eq!(holes, 1, "the island's loop, starting at {start}");
+        }
+    }
+
+    #[test]
     fn parameters_out_of_range_are_refused() {
         let pocket = Pocket {
             boundary: rect(10.0, 10.0),

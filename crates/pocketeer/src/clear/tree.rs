@@ -70,6 +70,9 @@ fn box_gap(b: &Aabb, p: Point) -> f64 {
     dx.hypot(dy)
 }
 
+/// Points of a hole tested against the outer loops.
+const HOLE_PROBES: usize = 8;
+
 /// Groups loops into parts: each clockwise loop goes with the counter-clockwise loop around it.
 /// Outer loops of one level never nest (the region of a pocket has no material inside its
 /// islands), so the enclosing outer loop is unique.
@@ -79,11 +82,31 @@ fn parts(loops: Vec<Contour>) -> Vec<(Contour, Vec<Contour>)> {
     let boxes: Vec<Aabb> = outers.iter().map(Contour::bbox).collect();
     let mut parts: Vec<(Contour, Vec<Contour>)> = outers.into_iter().map(|o| (o, Vec::new())).collect();
     for h in holes {
-        let p = h.segments[0].start();
+        // A hole may touch its outer loop at a point (an island whose offset just reaches the
+        // wall's), and one probe may fall there, outside by rounding: the owner is the outer
+        // loop round most of several probes spread along the hole.
+        let probes: Vec<Point> = (0..HOLE_PROBES)
+            .map(|k| {
+                let t = (k as f64 + 0.5) / HOLE_PROBES as f64;
+                let n = h.segments.len();
+                let i = ((t * n as f64) as usize).min(n - 1);
+                h.segments[i].point_at(t * n as f64 - i as f64)
+            })
+            .collect();
         let owner = if parts.len() == 1 {
             Some(0)
         } else {
-            (0..parts.len()).find(|&i| boxes[i].contains(p) && parts[i].0.contains(p))
+            (0..parts.len())
+                .map(|i| {
+                    let inside = probes
+                        .iter()
+                        .filter(|&&p| boxes[i].contains(p) && parts[i].0.contains(p))
+                        .count();
+                    (i, inside)
+                })
+                .filter(|&(_, inside)| inside > 0)
+                .max_by_key(|&(_, inside)| inside)
+                .map(|(i, _)| i)
         };
         // A hole outside every outer loop cannot come from an offset; drop it rather than cut it.
         if let Some(i) = owner {

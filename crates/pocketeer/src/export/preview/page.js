@@ -1,7 +1,8 @@
 // pocketeer's preview page: the drawing, the pockets and a program drawn on a canvas, with a
 // legend, a scale bar, the origin, a play slider and the report. Everything it shows comes
 // from the JSON in #data (written by pocketeer's export::preview); it asks the network for
-// nothing. Address fragments: #play=F opens the slider at the fraction F of the program;
+// nothing. Address fragments: #play=F opens the slider at the fraction F of the program,
+// #mark=N zoomed on mark N (both may be given: #play=0.5&mark=2);
 // #selftest moves the slider to the end and writes what it found into #selftest (the browser
 // test reads it).
 "use strict";
@@ -510,8 +511,11 @@ function inkedShare() {
 resize();
 const hash = location.hash;
 let readyMs = 0;
-const play = /#play=([0-9.]+)/.exec(hash);
+const play = /play=([0-9.]+)/.exec(hash);
 if (play) slider.value = String(Math.round(Math.min(1, +play[1]) * M.n));
+// #mark=N opens the page zoomed on mark N (as clicking it in the list does).
+const markAt = /mark=([0-9]+)/.exec(hash);
+if (markAt && D.marks[+markAt[1] - 1]) zoomTo(D.marks[+markAt[1] - 1].x, D.marks[+markAt[1] - 1].y);
 draw();
 readyMs = performance.now();
 canvas.dataset.readyMs = readyMs.toFixed(0);
