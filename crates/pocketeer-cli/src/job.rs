@@ -161,7 +161,16 @@ pub fn execute(
     .map_err(|e| Failure(locate(&e)))?;
     drop(spinner);
     for r in &results {
+        let notes: Vec<String> = r
+            .notes
+            .iter()
+            .map(|n| format!("operation {}: {n}", r.operation + 1))
+            .collect();
+        crate::print_warnings(&notes);
         let Some(p) = &r.pocketed else {
+            if !loaded.job.operations[r.operation].rest {
+                continue; // its note said why
+            }
             eprintln!(
                 "operation {}: nothing left to cut for tool {} ({} mm): no moves written",
                 r.operation + 1,

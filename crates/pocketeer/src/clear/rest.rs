@@ -51,8 +51,36 @@ pub fn rest_pockets(
     earlier: &[f64],
     tol: &Tolerance,
 ) -> Result<Vec<Pocket>, OffsetError> {
+    Ok(rest_pockets_exact(pocket, r, earlier, tol)?.0)
+}
+
+/// [`rest_pockets`], and whether they are exact (false: the difference could not be made, and
+/// they are the whole pocket the tool reaches).
+pub fn rest_pockets_exact(
+    pocket: &Pocket,
+    r: f64,
+    earlier: &[f64],
+    tol: &Tolerance,
+) -> Result<(Vec<Pocket>, bool), OffsetError> {
+    let rest = rest_centres(pocket, r, earlier, tol)?;
+    let mut out = Vec::new();
+    for piece in assemble(rest.centres, tol) {
+        if 2.0 * piece.area() <= SLIVER * piece.contours().map(Contour::length).sum::<f64>() {
+            continue;
+        }
+        out.extend(offset_pocket(&piece, -r, tol)?);
+    }
+    Ok((assemble(out, tol), rest.exact))
+}
+
+/// The loops of R, where the centre of the tool of radius `r` still has work in `pocket`
+/// after tools of radii `earlier` (see the module's documentation).
+pub fn rest_centres(pocket: &Pocket, r: f64, earlier: &[f64], tol: &Tolerance) -> Result<Rest, OffsetError> {
     if earlier.iter().any(|&r1| r1 <= r) {
-        return Ok(Vec::new());
+        return Ok(Rest {
+            centres: Vec::new(),
+            exact: true,
+        });
     }
     let mut region = offset_pocket(pocket, r, tol)?;
     for &r1 in earlier {
@@ -63,16 +91,32 @@ pub fn rest_pockets(
         for e in assemble(offset_pocket(pocket, r1, tol)?, tol) {
             cleared.extend(offset_pocket(&e, -(r1 - r + GROW), tol)?);
         }
-        region = difference(&region, &cleared, tol);
-    }
-    let mut out = Vec::new();
-    for piece in assemble(region, tol) {
-        if 2.0 * piece.area() <= SLIVER * piece.contours().map(Contour::length).sum::<f64>() {
-            continue;
+        match difference(&region, &cleared, tol) {
+            Some(r) => region = r,
+            // Safe rather than exact: the tool's whole centre region, so the whole pocket it
+            // can reach (more cutting, never material left).
+            None => {
+                return Ok(Rest {
+                    centres: offset_pocket(pocket, r, tol)?,
+                    exact: false,
+                })
+            }
         }
-        out.extend(offset_pocket(&piece, -r, tol)?);
     }
-    Ok(assemble(out, tol))
+    Ok(Rest {
+        centres: region,
+        exact: true,
+    })
+}
+
+/// Where a smaller tool's centre still has work ([`rest_centres`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rest {
+    /// The loops of R.
+    pub centres: Vec<Contour>,
+    /// False when the difference could not be made exactly and R is the tool's whole centre
+    /// region instead.
+    pub exact: bool,
 }
 
 /// Loops (counter-clockwise round their inside, clockwise round holes) grouped into pockets.
@@ -81,10 +125,10 @@ fn assemble(loops: Vec<Contour>, tol: &Tolerance) -> Vec<Pocket> {
 }
 
 /// The loops bounding what `a` holds and `b` does not (both sets oriented counter-clockwise
-/// round what they hold).
-fn difference(a: &[Contour], b: &[Contour], tol: &Tolerance) -> Vec<Contour> {
+/// round what they hold); `None` when the pieces would not close into loops.
+fn difference(a: &[Contour], b: &[Contour], tol: &Tolerance) -> Option<Vec<Contour>> {
     if b.is_empty() {
-        return a.to_vec();
+        return Some(a.to_vec());
     }
     let group: Vec<&Contour> = a.iter().chain(b).collect();
     // Every segment with its contour, and the places where a segment of `a` meets one of `b`.
@@ -124,7 +168,10 @@ fn difference(a: &[Contour], b: &[Contour], tol: &Tolerance) -> Vec<Contour> {
     let kept = |p: Point| wa.at(p) > 0 && wb.at(p) <= 0;
     let at_segment = |c: usize, k: usize| cuts.get(&(c, k)).map_or(&[][..], Vec::as_slice);
     let pieces = crate::import::nesting::boundary_pieces(&group, &at_segment, &kept, tol);
-    crate::import::nesting::stitch(pieces, tol).0
+    let (loops, left) = crate::import::nesting::stitch(pieces, tol);
+    // Pieces that close no loop mean a crossing was missed (near-tangent loops): a region
+    // may be lost, so the difference is not to be trusted.
+    (left == 0).then_some(loops)
 }
 
 /// The winding number of a set of loops round a point: the sum of each loop's (an index of one
@@ -178,7 +225,7 @@ mod tests {
             .iter()
             .flat_map(|p| offset_pocket(p, -(2.0 + GROW), &tol).unwrap())
             .collect();
-        let r = difference(&region, &u, &tol);
+        let r = difference(&region, &u, &tol).unwrap();
         assert_eq!(r.len(), 4);
         let exact = 4.0 * 4.0 * (1.0 - std::f64::consts::FRAC_PI_4);
         let area: f64 = r.iter().map(Contour::signed_area).sum();

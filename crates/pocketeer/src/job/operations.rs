@@ -80,6 +80,8 @@ pub struct OperationResult {
     pub tool: Tool,
     /// Its plans and tool path; `None` for a rest operation that found nothing to cut.
     pub pocketed: Option<PocketJob>,
+    /// What the machinist should know (a rest that could not be computed exactly).
+    pub notes: Vec<String>,
 }
 
 /// True when the two lists name the same layers (in any case and order).
@@ -130,6 +132,7 @@ pub fn run_job_with<'a>(
     }
     let mut out = Vec::new();
     for (k, op) in job.operations.iter().enumerate() {
+        let mut notes = Vec::new();
         let tool = *job
             .tools
             .iter()
@@ -160,11 +163,18 @@ pub fn run_job_with<'a>(
                 .map(|t| 0.5 * t.diameter)
                 .collect();
             let mut left = Vec::new();
-            for p in pockets {
-                left.extend(
-                    crate::clear::rest::rest_pockets(p, 0.5 * tool.diameter, &earlier, tol)
-                        .map_err(|e| fail(JobError::Clear(e.into())))?,
-                );
+            for (i, p) in pockets.iter().enumerate() {
+                let (rest, exact) =
+                    crate::clear::rest::rest_pockets_exact(p, 0.5 * tool.diameter, &earlier, tol)
+                        .map_err(|e| fail(JobError::Clear(e.into())))?;
+                if !exact {
+                    notes.push(format!(
+                        "pocket {}: its rest could not be computed exactly (loops that nearly touch); the {} mm tool clears the whole pocket",
+                        i + 1,
+                        tool.diameter
+                    ));
+                }
+                left.extend(rest);
             }
             rest = left;
             if rest.is_empty() {
@@ -172,6 +182,7 @@ pub fn run_job_with<'a>(
                     operation: k,
                     tool,
                     pocketed: None,
+                    notes,
                 });
                 continue;
             }
@@ -196,6 +207,19 @@ pub fn run_job_with<'a>(
                     operation: k,
                     tool,
                     pocketed: None,
+                    notes,
+                });
+                continue;
+            }
+            // Another operation may cut these pockets with a smaller tool: said, not refused,
+            // unless no operation cuts anything (below).
+            Err(e @ JobError::ToolFitsNowhere { .. }) if job.operations.len() > 1 => {
+                notes.push(format!("{e}: nothing cut"));
+                out.push(OperationResult {
+                    operation: k,
+                    tool,
+                    pocketed: None,
+                    notes,
                 });
                 continue;
             }
@@ -205,6 +229,7 @@ pub fn run_job_with<'a>(
             operation: k,
             tool,
             pocketed: Some(pocketed),
+            notes,
         });
     }
     Ok(out)
