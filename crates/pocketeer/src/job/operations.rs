@@ -96,6 +96,16 @@ fn same_layers(a: &[String], b: &[String]) -> bool {
 }
 
 impl OperationResult {
+    /// An operation that cuts nothing, and why.
+    fn nothing(operation: usize, tool: Tool, notes: Vec<String>) -> OperationResult {
+        OperationResult {
+            operation,
+            tool,
+            pocketed: None,
+            notes,
+        }
+    }
+
     /// The program section of this operation (none when it cuts nothing); `change` when its
     /// tool must be loaded (it is not the one the section before used).
     pub fn section(&self, change: bool, remark: String) -> Option<ToolSection<'_>> {
@@ -178,12 +188,7 @@ pub fn run_job_with<'a>(
             }
             rest = left;
             if rest.is_empty() {
-                out.push(OperationResult {
-                    operation: k,
-                    tool,
-                    pocketed: None,
-                    notes,
-                });
+                out.push(OperationResult::nothing(k, tool, notes));
                 continue;
             }
             &rest[..]
@@ -203,24 +208,14 @@ pub fn run_job_with<'a>(
             Ok(p) => p,
             // Rest pieces too narrow for the tool (slivers the larger tools' rounding left).
             Err(JobError::ToolFitsNowhere { .. }) if op.rest => {
-                out.push(OperationResult {
-                    operation: k,
-                    tool,
-                    pocketed: None,
-                    notes,
-                });
+                out.push(OperationResult::nothing(k, tool, notes));
                 continue;
             }
             // Another operation may cut these pockets with a smaller tool: said, not refused,
             // unless no operation cuts anything (below).
             Err(e @ JobError::ToolFitsNowhere { .. }) if job.operations.len() > 1 => {
                 notes.push(format!("{e}: nothing cut"));
-                out.push(OperationResult {
-                    operation: k,
-                    tool,
-                    pocketed: None,
-                    notes,
-                });
+                out.push(OperationResult::nothing(k, tool, notes));
                 continue;
             }
             Err(e) => return Err(fail(e)),
