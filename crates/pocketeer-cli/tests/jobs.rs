@@ -339,3 +339,25 @@ fn job_check_replays_before_writing() {
     assert!(err.contains("the check failed"), "{err}");
     assert!(!dir.path().join("plate.nc").exists());
 }
+
+#[test]
+fn a_job_whose_tools_fit_nowhere_is_refused_and_one_that_fits_somewhere_runs() {
+    // Tool 1 (60 mm) fits in no pocket of the plate: said, and the 2 mm rest still cuts.
+    let job = "drawing = \"plate.dxf\"\n[[tools]]\nnumber = 1\ndiameter = 60\n[[tools]]\nnumber = 2\ndiameter = 2\n[defaults]\nlayers = [\"SHALLOW\", \"DEEP\"]\nstepover = \"40%\"\ndepth = 1\n[[operations]]\ntool = 1\n[[operations]]\ntool = 2\nrest = true\n";
+    let (dir, path) = job_dir(job);
+    let out = run_job(&path);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("operation 1: a 60 mm tool fits in none of the 4 pockets"),
+        "{err}"
+    );
+    assert!(dir.path().join("plate.nc").exists());
+    // Both too large: nothing at all to cut is refused, as `pocket` refuses it.
+    let (dir, path) = job_dir(&job.replace("diameter = 2\n", "diameter = 50\n"));
+    let out = run_job(&path);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("fits in none"), "{err}");
+    assert!(!dir.path().join("plate.nc").exists());
+}

@@ -141,6 +141,8 @@ pub fn run_job_with<'a>(
         return Err(JobError::DuplicateTool(w[0]));
     }
     let mut out = Vec::new();
+    // The first operation whose tool fit nowhere, for a job that cuts nothing.
+    let mut nowhere: Option<JobError> = None;
     for (k, op) in job.operations.iter().enumerate() {
         let mut notes = Vec::new();
         let tool = *job
@@ -216,6 +218,7 @@ pub fn run_job_with<'a>(
             Err(e @ JobError::ToolFitsNowhere { .. }) if job.operations.len() > 1 => {
                 notes.push(format!("{e}: nothing cut"));
                 out.push(OperationResult::nothing(k, tool, notes));
+                nowhere.get_or_insert(fail(e));
                 continue;
             }
             Err(e) => return Err(fail(e)),
@@ -226,6 +229,12 @@ pub fn run_job_with<'a>(
             pocketed: Some(pocketed),
             notes,
         });
+    }
+    // A job that cuts nothing at all because its tools fit nowhere is refused, as a pocket is.
+    if out.iter().all(|r| r.pocketed.is_none()) {
+        if let Some(e) = nowhere {
+            return Err(e);
+        }
     }
     Ok(out)
 }
