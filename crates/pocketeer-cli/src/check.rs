@@ -161,7 +161,11 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     }
     if let Some(path) = &args.preview {
         let context = crate::page::Context {
-            title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.program)),
+            title: format!(
+                "{} → {}",
+                output::file_name(&args.drawing.file),
+                output::file_name(&args.program)
+            ),
             tool_diameter,
             tool_changes: radii.iter().map(|&(k, r)| (k, 2.0 * r)).collect(),
             inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
@@ -223,7 +227,7 @@ fn tool_radii(
 /// tool's gouge with its radius, the leftover against the smallest tool's reach, and the
 /// stock cut deeper than the layer's depth.
 fn check_job(args: &CheckArgs) -> Result<Verdict, Failure> {
-    let (loaded, analyses) = crate::job::read_job(&args.drawing.file, None)?;
+    let (loaded, analyses, _) = crate::job::read_job(&args.drawing.file, None)?;
     let name = args.program.display().to_string();
     let text = std::fs::read(&args.program).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
     let text = String::from_utf8_lossy(&text);
@@ -363,12 +367,6 @@ pub fn job_report(
     }
     let _ = writeln!(out, "{}", if passed { "JOB PASSED" } else { "JOB FAILED" });
     Ok((out, passed))
-}
-
-fn file_name(p: &std::path::Path) -> String {
-    p.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
 }
 
 fn place(p: &Option<pocketeer::simulate::check::Place>) -> String {

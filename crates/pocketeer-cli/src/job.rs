@@ -89,8 +89,8 @@ impl Loaded {
 pub type Analyses = BTreeMap<Vec<String>, Analysis>;
 
 /// Reads the job file at `path` and its drawing, every layer set once; `output` overrides the
-/// file's output.
-pub fn read_job(path: &Path, output: Option<&PathBuf>) -> Result<(Loaded, Analyses), Failure> {
+/// file's output. Also returns the file's text, for messages that point into it.
+pub fn read_job(path: &Path, output: Option<&PathBuf>) -> Result<(Loaded, Analyses, String), Failure> {
     let name = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
     let file = jobfile::parse(&name, &text).map_err(Failure)?;
@@ -106,7 +106,7 @@ pub fn read_job(path: &Path, output: Option<&PathBuf>) -> Result<(Loaded, Analys
     let bytes = std::fs::read(&loaded.drawing)
         .map_err(|e| Failure(format!("{}: cannot read: {e}", loaded.drawing.display())))?;
     let analyses = analyses(Some(&loc), &loaded, &bytes)?;
-    Ok((loaded, analyses))
+    Ok((loaded, analyses, text))
 }
 
 pub fn run(args: &JobArgs) -> Result<(), Failure> {
@@ -117,13 +117,12 @@ pub fn run(args: &JobArgs) -> Result<(), Failure> {
         return Err(Failure("a job file is needed (or --print-template)".into()));
     };
     let name = path.display().to_string();
-    let (loaded, analyses) = read_job(path, args.output.as_ref())?;
+    let (loaded, analyses, text) = read_job(path, args.output.as_ref())?;
     let mut outputs = vec![("output", loaded.output.as_path())];
     if let Some(p) = &args.preview {
         outputs.push(("--preview", p.as_path()));
     }
     output::guard(&[path, &loaded.drawing], &outputs).map_err(Failure)?;
-    let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("{name}: cannot read: {e}")))?;
     let loc = Locator {
         name: &name,
         text: &text,
@@ -228,9 +227,9 @@ pub fn execute(
             } else {
                 "layer parameters of"
             },
-            file_name(path)
+            output::file_name(path)
         ),
-        format!("drawing {}", file_name(&loaded.drawing)),
+        format!("drawing {}", output::file_name(&loaded.drawing)),
     ];
     header.extend(remarks.iter().cloned());
     let mut header: Vec<String> = header.iter().flat_map(|l| crate::display::wrap(l, 72)).collect();
@@ -336,7 +335,7 @@ pub fn analyses(
         {
             let what = format!(
                 "layer '{layer}' is not in {} (its layers: {})",
-                file_name(&loaded.drawing),
+                output::file_name(&loaded.drawing),
                 all.layers.join(", ")
             );
             return Err(Failure(
@@ -626,7 +625,11 @@ fn preview(
         })
         .collect();
     let context = crate::page::Context {
-        title: format!("{} → {}", file_name(path), file_name(&loaded.output)),
+        title: format!(
+            "{} → {}",
+            output::file_name(path),
+            output::file_name(&loaded.output)
+        ),
         tool_diameter: first,
         tool_changes,
         inches: JobUnits::of(a.drawing.units) == JobUnits::Inches,
@@ -638,10 +641,4 @@ fn preview(
         report: String::new(),
     };
     Ok(crate::page::html(&a, read, &context))
-}
-
-fn file_name(p: &Path) -> String {
-    p.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
 }

@@ -10,6 +10,13 @@ pub fn is_stdout(path: &Path) -> bool {
     path.as_os_str() == "-"
 }
 
+/// The file name of `p` alone, for headers and titles.
+pub fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 /// How a message names the output: its path, or `standard output`.
 pub fn describe(path: &Path) -> String {
     if is_stdout(path) {

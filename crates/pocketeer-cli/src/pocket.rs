@@ -351,21 +351,11 @@ impl Settings {
     }
 
     fn link(&self, args: &PocketArgs) -> LinkParams {
-        LinkParams {
-            depth: self.depth,
-            step_down: self.step_down,
-            safe_z: self.safe_z,
-            feed_height: self.feed_height,
-            direction: args.direction.into(),
-            entry: args.entry.into(),
-            ramp_angle: args.ramp_angle.to_radians(),
-            time: pocketeer::machining_time::TimeModel {
-                feed: self.feed,
-                plunge_feed: self.plunge_feed,
-                rapid: self.rapid_rate,
-                per_retract: args.retract_time,
-            },
-        }
+        link_params(
+            args,
+            [self.depth, self.step_down, self.safe_z, self.feed_height],
+            [self.feed, self.plunge_feed, self.rapid_rate],
+        )
     }
 
     fn program(&self, args: &PocketArgs, header: Vec<String>) -> ProgramSettings {
@@ -480,6 +470,30 @@ pub fn run(args: &PocketArgs) -> Result<(), Failure> {
         output::describe(&args.output)
     );
     Ok(())
+}
+
+/// The linking parameters from the flags, with `depth`, step-down, safe height and feed
+/// height (mm) and the feed, plunge feed and rapid rate (mm/min) settled elsewhere.
+fn link_params(
+    args: &PocketArgs,
+    [depth, step_down, safe_z, feed_height]: [f64; 4],
+    [feed, plunge_feed, rapid]: [f64; 3],
+) -> LinkParams {
+    LinkParams {
+        depth,
+        step_down,
+        safe_z,
+        feed_height,
+        direction: args.direction.into(),
+        entry: args.entry.into(),
+        ramp_angle: args.ramp_angle.to_radians(),
+        time: pocketeer::machining_time::TimeModel {
+            feed,
+            plunge_feed,
+            rapid,
+            per_retract: args.retract_time,
+        },
+    }
 }
 
 /// `--layer-params dxf2gcode`: every `MILL:` layer of the drawing one operation, the
@@ -600,21 +614,11 @@ fn run_layer_params(args: &PocketArgs) -> Result<(), Failure> {
             tool: number,
             stepover,
             allowance: args.allowance,
-            link: LinkParams {
-                depth,
-                step_down,
-                safe_z,
-                feed_height,
-                direction: args.direction.into(),
-                entry: args.entry.into(),
-                ramp_angle: args.ramp_angle.to_radians(),
-                time: pocketeer::machining_time::TimeModel {
-                    feed,
-                    plunge_feed,
-                    rapid: args.rapid_rate.unwrap_or(d.rapid_rate),
-                    per_retract: args.retract_time,
-                },
-            },
+            link: link_params(
+                args,
+                [depth, step_down, safe_z, feed_height],
+                [feed, plunge_feed, args.rapid_rate.unwrap_or(d.rapid_rate)],
+            ),
             rest: false,
         });
     }
@@ -669,7 +673,7 @@ fn header(
     let u = s.units;
     let h = vec![
         format!("pocketeer {}", env!("CARGO_PKG_VERSION")),
-        format!("drawing {}", file_name(&args.drawing.file)),
+        format!("drawing {}", output::file_name(&args.drawing.file)),
         format!("units {}: {}", u.symbol(), crate::sanity::unit_origin(analysis)),
         format!(
             "tool diameter {}, stepover {}",
@@ -769,7 +773,11 @@ fn html_preview(
         })
         .collect();
     let context = crate::page::Context {
-        title: format!("{} → {}", file_name(&args.drawing.file), file_name(&args.output)),
+        title: format!(
+            "{} → {}",
+            output::file_name(&args.drawing.file),
+            output::file_name(&args.output)
+        ),
         tool_diameter: s.diameter,
         tool_changes: Vec::new(),
         inches: u == JobUnits::Inches,
@@ -871,10 +879,4 @@ fn preview(analysis: &pocketeer::Analysis, job: &pocketeer::job::PocketJob, diam
             },
         ],
     )
-}
-
-fn file_name(p: &std::path::Path) -> String {
-    p.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
 }

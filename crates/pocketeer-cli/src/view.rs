@@ -41,7 +41,11 @@ pub fn run(args: &ViewArgs) -> Result<(), Failure> {
     let warnings = crate::inspect::import_warnings(&analysis);
     crate::print_warnings(&warnings);
     let context = crate::page::Context {
-        title: format!("{} → {}", name(&args.drawing.file), name(&args.program)),
+        title: format!(
+            "{} → {}",
+            output::file_name(&args.drawing.file),
+            output::file_name(&args.program)
+        ),
         tool_diameter: args.tool_diameter,
         tool_changes: Vec::new(),
         inches: crate::display::JobUnits::of(analysis.drawing.units) == crate::display::JobUnits::Inches,
@@ -70,11 +74,4 @@ pub fn read_program(path: &Path) -> Result<pocketeer::simulate::Program, Failure
     let program = pocketeer::simulate::read_program(&String::from_utf8_lossy(&text))
         .map_err(|e| Failure(format!("{}: {e}", path.display())))?;
     Ok(program)
-}
-
-/// The file name of `p`, for titles.
-fn name(p: &Path) -> String {
-    p.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
 }

@@ -85,14 +85,7 @@ fn parts(loops: Vec<Contour>) -> Vec<(Contour, Vec<Contour>)> {
         // A hole may touch its outer loop at a point (an island whose offset just reaches the
         // wall's), and one probe may fall there, outside by rounding: the owner is the outer
         // loop round most of several probes spread along the hole.
-        let probes: Vec<Point> = (0..HOLE_PROBES)
-            .map(|k| {
-                let t = (k as f64 + 0.5) / HOLE_PROBES as f64;
-                let n = h.segments.len();
-                let i = ((t * n as f64) as usize).min(n - 1);
-                h.segments[i].point_at(t * n as f64 - i as f64)
-            })
-            .collect();
+        let probes = h.points_along(HOLE_PROBES);
         let owner = if parts.len() == 1 {
             Some(0)
         } else {

@@ -79,6 +79,42 @@ impl Contour {
         }
     }
 
+    /// `count` points spread evenly along the contour by length (the middles of `count` equal
+    /// parts), for deciding which side of another contour it lies on.
+    ///
+    /// ```
+    /// use pocketeer::geom::{Contour, Point};
+    /// let square = Contour::polygon(&[
+    ///     Point::new(0.0, 0.0), Point::new(4.0, 0.0), Point::new(4.0, 4.0), Point::new(0.0, 4.0),
+    /// ]);
+    /// let p = square.points_along(4);
+    /// assert_eq!(p, vec![Point::new(2.0, 0.0), Point::new(4.0, 2.0), Point::new(2.0, 4.0), Point::new(0.0, 2.0)]);
+    /// ```
+    pub fn points_along(&self, count: usize) -> Vec<Point> {
+        let total = self.length();
+        let mut out = Vec::with_capacity(count);
+        let mut acc = 0.0;
+        let mut k = 0;
+        for s in &self.segments {
+            let len = s.length();
+            while k < count {
+                let target = (k as f64 + 0.5) / count as f64 * total;
+                if target > acc + len {
+                    break;
+                }
+                let t = if len > 0.0 {
+                    ((target - acc) / len).clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                out.push(s.point_at(t));
+                k += 1;
+            }
+            acc += len;
+        }
+        out
+    }
+
     /// Total length.
     pub fn length(&self) -> f64 {
         self.segments.iter().map(Segment::length).sum()

@@ -317,32 +317,6 @@ impl Meetings {
     }
 }
 
-/// Points spread evenly along a contour, for deciding which side of another contour it lies on.
-fn samples(c: &Contour, count: usize) -> Vec<Point> {
-    let total = c.length();
-    let mut out = Vec::with_capacity(count);
-    let mut acc = 0.0;
-    let mut k = 0;
-    for s in &c.segments {
-        let len = s.length();
-        while k < count {
-            let target = (k as f64 + 0.5) / count as f64 * total;
-            if target > acc + len {
-                break;
-            }
-            let t = if len > 0.0 {
-                ((target - acc) / len).clamp(0.0, 1.0)
-            } else {
-                0.5
-            };
-            out.push(s.point_at(t));
-            k += 1;
-        }
-        acc += len;
-    }
-    out
-}
-
 /// Nesting depth of each contour: 0 when none encloses it, else one more than the deepest contour
 /// that encloses it.
 ///
@@ -365,7 +339,7 @@ fn nesting_depths(
     let mut done = vec![false; n];
     for &b in &order {
         let inner = &contours[b].contour;
-        let probe = samples(inner, 1);
+        let probe = inner.points_along(1);
         let mut depth = 0;
         for a in index.intersecting(&boxes[b]) {
             if a == b || !done[a] {
@@ -392,7 +366,7 @@ fn nesting_depths(
 /// outside it).
 fn mostly_inside(inner: &Contour, outer: usize, locator: &Locator, tol: &Tolerance) -> bool {
     let (mut inside, mut outside) = (0, 0);
-    for p in samples(inner, 64) {
+    for p in inner.points_along(64) {
         if locator.contours[outer]
             .segments
             .iter()
@@ -540,7 +514,7 @@ pub(crate) fn assemble(
                 // apart), and a single probe may fall on one: the owner is the smallest
                 // boundary around most of the probes. An even count keeps the probes off the
                 // hole's two ends by length, where a loop cut at two points has its corners.
-                let probes = samples(hole, OWNER_PROBES);
+                let probes = hole.points_along(OWNER_PROBES);
                 let extent = hole.bbox();
                 index
                     .intersecting(&extent)
