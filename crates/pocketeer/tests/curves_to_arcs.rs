@@ -8,35 +8,51 @@ use proptest::prelude::*;
 use std::f64::consts::TAU;
 
 /// Distance from `q` to the curve `eval`, refined around each sample that is a local minimum
-/// of the distance (the curve may pass near `q` more than once).
-fn distance_to_curve(q: Point, samples: &[(f64, Point)], eval: &dyn Fn(f64) -> Point) -> f64 {
+/// of the distance (the curve may pass near `q` more than once) or a corner. Each side of such
+/// a sample is searched on its own: the distance is unimodal only between corners, and at a
+/// corner its minimum may lie beside a sample that is not a local minimum.
+fn distance_to_curve(
+    q: Point,
+    samples: &[(f64, Point)],
+    corners: &[f64],
+    eval: &dyn Fn(f64) -> Point,
+) -> f64 {
     let d: Vec<f64> = samples.iter().map(|s| s.1.distance(q)).collect();
     let mut best = f64::INFINITY;
     for i in 0..samples.len() {
         let left = i == 0 || d[i - 1] >= d[i];
         let right = i + 1 == samples.len() || d[i + 1] >= d[i];
-        if !(left && right) {
+        let minimum = left && right;
+        if !minimum && !corners.contains(&samples[i].0) {
             continue;
         }
-        let (mut lo, mut hi) = (
-            samples[i.saturating_sub(1)].0,
-            samples[(i + 1).min(samples.len() - 1)].0,
-        );
-        // The distance is unimodal this close to a minimum: ternary search.
-        for _ in 0..80 {
-            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
-            if eval(m1).distance(q) < eval(m2).distance(q) {
-                hi = m2;
-            } else {
-                lo = m1;
+        best = best.min(d[i]);
+        let sides = [(i.saturating_sub(1), i), (i, (i + 1).min(samples.len() - 1))];
+        for (a, b) in sides {
+            let (mut lo, mut hi) = (samples[a].0, samples[b].0);
+            for _ in 0..80 {
+                let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+                if eval(m1).distance(q) < eval(m2).distance(q) {
+                    hi = m2;
+                } else {
+                    lo = m1;
+                }
             }
+            best = best.min(eval(0.5 * (lo + hi)).distance(q));
         }
-        best = best.min(eval(0.5 * (lo + hi)).distance(q)).min(d[i]);
     }
     best
 }
 
-fn check(curve: &Curve, t0: f64, t1: f64, eval: &dyn Fn(f64) -> Point) -> Result<(), TestCaseError> {
+/// Checks the arcs of `curve` against `eval` from `t0` to `t1`; `corners` are the parameters
+/// where the curve may turn a corner, sampled besides the even spread.
+fn check(
+    curve: &Curve,
+    t0: f64,
+    t1: f64,
+    corners: &[f64],
+    eval: &dyn Fn(f64) -> Point,
+) -> Result<(), TestCaseError> {
     let mut segs: Vec<Segment> = Vec::new();
     curve.to_segments(CURVE_TOLERANCE, &mut segs);
     prop_assert!(!segs.is_empty());
@@ -44,10 +60,11 @@ fn check(curve: &Curve, t0: f64, t1: f64, eval: &dyn Fn(f64) -> Point) -> Result
     for w in segs.windows(2) {
         prop_assert!(w[0].end().distance(w[1].start()) < 1e-6, "pieces do not join");
     }
-    let samples: Vec<(f64, Point)> = (0..=2000)
-        .map(|i| t0 + (t1 - t0) * i as f64 / 2000.0)
-        .map(|t| (t, eval(t)))
-        .collect();
+    let mut params: Vec<f64> = (0..=2000).map(|i| t0 + (t1 - t0) * i as f64 / 2000.0).collect();
+    params.extend(corners.iter().filter(|&&t| t > t0 && t < t1));
+    params.sort_by(f64::total_cmp);
+    params.dedup();
+    let samples: Vec<(f64, Point)> = params.into_iter().map(|t| (t, eval(t))).collect();
     for &(_, p) in &samples {
         let d = segs
             .iter()
@@ -58,7 +75,7 @@ fn check(curve: &Curve, t0: f64, t1: f64, eval: &dyn Fn(f64) -> Point) -> Result
     for s in &segs {
         for k in 0..=8 {
             let q = s.point_at(k as f64 / 8.0);
-            let d = distance_to_curve(q, &samples, eval);
+            let d = distance_to_curve(q, &samples, corners, eval);
             prop_assert!(d <= CURVE_TOLERANCE, "arc point {q:?} is {d} from the curve");
         }
     }
@@ -79,7 +96,38 @@ proptest! {
         knots.extend(vec![(n - degree) as f64; degree + 1]);
         let s = Nurbs { degree, knots, points: pts.iter().map(|&(x, y)| Point::new(x, y)).collect(), weights: vec![1.0; n] };
         let end = (n - degree) as f64;
-        check(&Curve::Spline(s.clone()), 0.0, end, &|t| s.point(t))?;
+        check(&Curve::Spline(s.clone()), 0.0, end, &[], &|t| s.point(t))?;
+    }
+
+    /// Rational splines of degree 1 to 5 with knots repeated up to the degree: the fit runs
+    /// across the knots where the curve is smooth and stops at the corners.
+    #[test]
+    fn rational_splines_with_repeated_knots(
+        degree in 1usize..=5,
+        pts in prop::collection::vec((-50.0..50.0f64, -50.0..50.0f64, 0.3..3.0f64), 6..12),
+        repeats in prop::collection::vec(1usize..=5, 12),
+    ) {
+        let n = pts.len();
+        prop_assume!(n > degree);
+        // Inner knots 1, 2, … each repeated up to the degree, clamped ends.
+        let mut knots = vec![0.0; degree + 1];
+        let mut value = 0.0;
+        let mut r = repeats.iter().cycle();
+        while knots.len() < n {
+            value += 1.0;
+            let times = (*r.next().unwrap_or(&1)).min(degree).min(n - knots.len());
+            knots.extend(std::iter::repeat_n(value, times));
+        }
+        value += 1.0;
+        knots.extend(vec![value; degree + 1]);
+        let s = Nurbs {
+            degree,
+            knots,
+            points: pts.iter().map(|&(x, y, _)| Point::new(x, y)).collect(),
+            weights: pts.iter().map(|&(_, _, w)| w).collect(),
+        };
+        let corners: Vec<f64> = (1..value as usize).map(|k| k as f64).collect();
+        check(&Curve::Spline(s.clone()), 0.0, value, &corners, &|t| s.point(t))?;
     }
 
     #[test]
@@ -87,6 +135,6 @@ proptest! {
         let u = Vector::from_angle(rot) * a;
         let v = Vector::from_angle(rot).perp() * (a * ratio);
         let e = EllipseArc { center: Point::new(3.0, -7.0), u, v, t0, sweep };
-        check(&Curve::Ellipse(e), t0, t0 + sweep, &|t| e.point(t))?;
+        check(&Curve::Ellipse(e), t0, t0 + sweep, &[], &|t| e.point(t))?;
     }
 }

@@ -1,8 +1,8 @@
 //! Approximation of smooth curves (ellipses, splines) by biarcs: pairs of tangent-continuous
 //! circular arcs, subdivided until every sampled curve point is within the tolerance.
 
-use crate::geom::distance::{in_sweep, line_point_distance};
-use crate::geom::{Arc, Line, Point, Segment, Vector};
+use super::biarc_piece::Piece;
+use crate::geom::{Line, Point, Segment, Vector};
 
 /// Number of curve samples checked against each biarc.
 const SAMPLES: usize = 24;
@@ -11,7 +11,7 @@ const SAMPLES: usize = 24;
 const MARGIN: f64 = 0.8;
 /// Points of each arc checked against the curve.
 const ARC_PROBES: usize = 6;
-/// Subdivision depth limit: 2^24 pieces is far beyond any drawing.
+/// The shortest piece is 2^-24 of the curve's parameter range, far beyond any drawing.
 const MAX_DEPTH: u32 = 24;
 /// Newton steps at most when projecting a point on the curve: it converges in three or four.
 const NEWTON_STEPS: usize = 12;
@@ -25,41 +25,89 @@ pub trait SmoothCurve {
 }
 
 /// Appends to `out` lines and arcs that follow `curve` from `t0` to `t1` within `tolerance`.
+///
+/// The pieces are laid one after the other from `t0`, each as long as fits: a biarc's error
+/// grows with the cube of its length, so the error a try measures sets the length of the next
+/// try. Pieces come out close to the tolerance (halving a failed piece left most of them at an
+/// eighth to a half of it, and twice as many), with about one failed try in three pieces.
 pub fn fit(curve: &impl SmoothCurve, t0: f64, t1: f64, tolerance: f64, out: &mut Vec<Segment>) {
-    fit_rec(curve, t0, t1, tolerance, 0, out);
-}
-
-fn fit_rec(curve: &impl SmoothCurve, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<Segment>) {
-    let (p0, d0, _) = curve.derivatives(t0);
-    let (p1, d1, _) = curve.derivatives(t1);
-    if p0.distance(p1) <= tol * 1e-6 {
-        return; // a negligible piece: the chain closes the gap within the join tolerance
+    let range = t1 - t0;
+    if range == 0.0 || !range.is_finite() {
+        return;
     }
-    // Going from t0 to t1 the curve heads along its derivative, or against it where t1 < t0
-    // (a clockwise elliptical arc): with the tangents reversed no biarc fits, and every piece
-    // was halved down to MAX_DEPTH, 16 million lines for one arc.
-    let candidate = match (
-        heading(curve, t0, t1, p0, d0),
-        heading(curve, t1, t0, p1, d1).map(|v| -v),
-    ) {
-        (Some(a), Some(b)) => biarc(p0, a, p1, b),
-        _ => None,
-    };
-    let target = tol * MARGIN;
-    let fits = candidate
-        .as_ref()
-        .is_some_and(|pieces| follows(curve, t0, t1, pieces, target));
-    match candidate {
-        Some(pieces) if depth >= MAX_DEPTH || fits => out.extend(pieces.iter().flatten().copied()),
-        None if depth >= MAX_DEPTH => out.push(Segment::Line(Line::new(p0, p1))),
-        _ => {
-            // Halving: where the first try failed, the error is rarely spread evenly enough for
-            // a finer even split to pay off (measured on ellipses and splines).
-            let mid = 0.5 * (t0 + t1);
-            fit_rec(curve, t0, mid, tol, depth + 1, out);
-            fit_rec(curve, mid, t1, tol, depth + 1, out);
+    let target = tolerance * MARGIN;
+    let shortest = range.abs() * 0.5f64.powi(MAX_DEPTH as i32);
+    let (mut t, mut step) = (t0, range);
+    let (mut p, mut d, _) = curve.derivatives(t0);
+    while (t1 - t) * range.signum() > 0.0 {
+        let left = t1 - t;
+        // A try reaching nearly to the end takes the rest: no sliver is left behind. (Below
+        // 1 / 0.8, the most a failed try shrinks by, so that the try after it is shorter.)
+        let e = if step.abs() * 1.2 >= left.abs() {
+            t1
+        } else {
+            t + step
+        };
+        let tried = e - t;
+        let (q, dq, _) = curve.derivatives(e);
+        // Twice the shortest: t + step - t may round a little above it.
+        let at_floor = tried.abs() <= 2.0 * shortest;
+        if p.distance(q) <= tolerance * 1e-6 && (at_floor || negligible(curve, t, e, p, tolerance)) {
+            // A negligible piece: the chain closes the gap within the join tolerance.
+            (t, p, d) = (e, q, dq);
+            continue;
+        }
+        // Going from t to e the curve heads along its derivative, or against it where e < t
+        // (a clockwise elliptical arc): with the tangents reversed no biarc fits, and every
+        // piece was cut down to the shortest, 16 million lines for one arc.
+        let candidate = match (
+            heading(curve, t, e, p, d),
+            heading(curve, e, t, q, dq).map(|v| -v),
+        ) {
+            (Some(a), Some(b)) => biarc_pieces(p, a, q, b),
+            _ => None,
+        };
+        let error = candidate
+            .as_ref()
+            .map_or(f64::INFINITY, |b| deviation(curve, t, e, b.pieces(), target));
+        match candidate {
+            Some(pieces) if at_floor || error <= target => {
+                out.extend(pieces.pieces().iter().map(Piece::segment));
+                (t, p, d) = (e, q, dq);
+                step = tried * next_length(error, target).clamp(0.7, 3.0);
+            }
+            None if at_floor => {
+                out.push(Segment::Line(Line::new(p, q)));
+                (t, p, d) = (e, q, dq);
+            }
+            _ => {
+                let shorter = tried * next_length(error, target).clamp(0.15, 0.8);
+                step = if shorter.abs() < shortest {
+                    shortest * range.signum()
+                } else {
+                    shorter
+                };
+            }
         }
     }
+}
+
+/// The share of a piece's length at which a biarc's error, growing with the cube of the
+/// length, would be 90 % of the target; half the length where the error is unknown.
+fn next_length(error: f64, target: f64) -> f64 {
+    if !error.is_finite() {
+        0.5
+    } else if error <= 0.0 {
+        f64::INFINITY
+    } else {
+        0.9 * (target / error).cbrt()
+    }
+}
+
+/// True when the curve from `t0` to `t1`, whose ends lie together at `p`, stays within a
+/// millionth of the tolerance of `p` (a degenerate span, not a closed loop).
+fn negligible(curve: &impl SmoothCurve, t0: f64, t1: f64, p: Point, tolerance: f64) -> bool {
+    (1..4).all(|k| curve.point(t0 + (t1 - t0) * k as f64 / 4.0).distance(p) <= tolerance * 1e-6)
 }
 
 /// The unit direction in which the curve leaves `t` towards `toward`: its derivative, or where
@@ -79,30 +127,9 @@ fn heading(curve: &impl SmoothCurve, t: f64, toward: f64, p: Point, d: Vector) -
     })
 }
 
-/// True when `q` is within `limit` of the piece `s` of a biarc (sign tests against an arc's
-/// stored ends, squared distances).
-fn is_near(s: &Segment, q: Point, limit: f64) -> bool {
-    match s {
-        Segment::Line(l) => line_point_distance(l, q) <= limit,
-        Segment::Arc(a) => {
-            let v = q - a.center();
-            let (start, end) = (a.start(), a.end());
-            if in_sweep(a.sweep(), start - a.center(), end - a.center(), v) {
-                // | |v| − r | ≤ limit without the square root.
-                let (lo, hi) = ((a.radius() - limit).max(0.0), a.radius() + limit);
-                let vv = v.length_sq();
-                vv <= hi * hi && vv >= lo * lo
-            } else {
-                let ll = limit * limit;
-                start.distance_sq(q) <= ll || end.distance_sq(q) <= ll
-            }
-        }
-    }
-}
-
 /// The points dividing the piece `s` into `ARC_PROBES` equal parts, ends excluded (round an
 /// arc by rotation: one sine and cosine for all of them).
-fn probes(s: &Segment) -> impl Iterator<Item = Point> + '_ {
+fn probes(s: Segment) -> impl Iterator<Item = Point> {
     let (start, end) = (s.start(), s.end());
     let (center, step) = match s {
         Segment::Arc(a) => (a.center(), a.sweep() / ARC_PROBES as f64),
@@ -119,34 +146,109 @@ fn probes(s: &Segment) -> impl Iterator<Item = Point> + '_ {
     })
 }
 
-/// True when the curve from `t0` to `t1` and the biarc are within `limit` of each other, both
-/// ways: every curve sample near the biarc, and every probe of the biarc near the curve (an
-/// arc may swing out and back between samples near it). The cheaper way first: most failed
-/// fits fail there.
-fn follows(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Option<Segment>; 2], limit: f64) -> bool {
-    let pieces: Vec<&Segment> = pieces.iter().flatten().collect();
+/// How far the curve from `t0` to `t1` and the biarc lie apart: the largest distance of a
+/// curve sample from the biarc when that is within `limit` and every point of the biarc is
+/// within `limit` of the curve, else an estimate above `limit`. The samples first: most failed
+/// fits fail there, and their distances say by how much.
+///
+/// The other way round, from the biarc to the curve, follows from the samples where they
+/// project onto the pieces in order, each step forward by a short turn (see
+/// [`Piece::steps_forward`]): the curve then crosses every radius of an arc (every normal of a
+/// line) near where the samples lie. Where they do not, points along the biarc are projected on
+/// the curve one by one (an arc may swing out and back between samples near it).
+fn deviation(curve: &impl SmoothCurve, t0: f64, t1: f64, pieces: &[Piece], limit: f64) -> f64 {
     let mut samples = [(0.0, Point::ORIGIN); SAMPLES + 1];
-    for (i, s) in samples.iter_mut().enumerate() {
-        let t = t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
-        *s = (t, curve.point(t));
-    }
-    // The piece the previous sample was near is the likeliest for the next.
+    // The piece each sample projects onto, if any.
+    let mut onto = [None; SAMPLES + 1];
+    let mut worst = 0.0f64;
+    // The piece the previous sample was nearest to is the likeliest for the next.
     let mut near = 0;
-    for &(_, p) in &samples {
-        match (0..pieces.len())
-            .map(|k| (near + k) % pieces.len())
-            .find(|&k| is_near(pieces[k], p, limit))
-        {
-            Some(k) => near = k,
-            None => return false,
+    let step = (t1 - t0) / SAMPLES as f64;
+    for (n, &i) in SAMPLE_ORDER.iter().enumerate() {
+        let t = if i == SAMPLES { t1 } else { t0 + step * i as f64 };
+        let p = curve.point(t);
+        samples[i] = (t, p);
+        let (distance, piece) = match pieces[near].projected_distance(p) {
+            Some(d) if d <= 0.25 * limit => (d, Some(near)),
+            _ => nearest_piece(pieces, p),
+        };
+        onto[i] = piece;
+        near = piece.unwrap_or(near);
+        worst = worst.max(distance);
+        // A try that fails on the coarse samples fails at once: their worst says by how much.
+        if worst > limit && n + 1 >= COARSE_SAMPLES {
+            return worst;
         }
     }
+    if worst > limit || in_order(pieces, &samples, &onto, 0.25 * limit) {
+        return worst;
+    }
     let mut nearest = 0;
-    pieces.iter().flat_map(|&piece| probes(piece)).all(|q| {
+    let probes_near = pieces.iter().flat_map(|piece| probes(piece.segment())).all(|q| {
         nearest = nearest_sample(&samples, q, nearest);
         is_near_curve(curve, &samples, nearest, q, limit)
-    })
+    });
+    if probes_near {
+        worst
+    } else {
+        1.3 * limit
+    }
 }
+
+/// The distance from `p` to the nearest of `pieces`, and that piece where `p` projects onto it.
+fn nearest_piece(pieces: &[Piece], p: Point) -> (f64, Option<usize>) {
+    let mut best = (f64::INFINITY, None);
+    for (k, piece) in pieces.iter().enumerate() {
+        let (d, onto) = match piece.projected_distance(p) {
+            Some(d) => (d, Some(k)),
+            None => (piece.distance(p), None),
+        };
+        if d < best.0 {
+            best = (d, onto);
+        }
+    }
+    best
+}
+
+/// True when the samples that project onto a piece go along the pieces from the first one's
+/// start to the last one's end, each step forward and turning so little that an arc strays at
+/// most `sag` from the chord of the step.
+fn in_order(pieces: &[Piece], samples: &[(f64, Point)], onto: &[Option<usize>], sag: f64) -> bool {
+    let (mut k, mut at) = (0, pieces[0].start());
+    let ends = onto
+        .iter()
+        .zip(samples)
+        .filter_map(|(piece, s)| piece.map(|k| (k, s.1)))
+        .chain(std::iter::once((
+            pieces.len() - 1,
+            pieces[pieces.len() - 1].end(),
+        )));
+    for (next, p) in ends {
+        if next < k {
+            return false;
+        }
+        // Onto the next piece: along this one to its end first.
+        while k < next {
+            if !pieces[k].steps_forward(at, pieces[k].end(), sag) {
+                return false;
+            }
+            (k, at) = (k + 1, pieces[k + 1].start());
+        }
+        if !pieces[k].steps_forward(at, p, sag) {
+            return false;
+        }
+        at = p;
+    }
+    true
+}
+
+/// The order the samples are taken in: the ends, then every sixth, every third, and the rest,
+/// so that the first [`COARSE_SAMPLES`] are spread evenly over the piece.
+const SAMPLE_ORDER: [usize; SAMPLES + 1] = [
+    0, 24, 12, 6, 18, 3, 9, 15, 21, 1, 2, 4, 5, 7, 8, 10, 11, 13, 14, 16, 17, 19, 20, 22, 23,
+];
+/// The samples after which a try that is already off fails.
+const COARSE_SAMPLES: usize = 9;
 
 /// The sample nearest to `q` walking from sample `from` while they come nearer: the probes
 /// follow the samples in order, so the walk is short. (A farther local minimum only makes the
@@ -207,7 +309,36 @@ fn is_near_curve(curve: &impl SmoothCurve, samples: &[(f64, Point)], i: usize, q
 
 /// The equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`):
 /// its one or two pieces, a piece of zero length left out.
+///
+/// ```
+/// use pocketeer::geom::{Point, Vector};
+/// use pocketeer::import::biarc::biarc;
+/// // From heading east at the origin to heading north at (10, 3): two arcs turning left.
+/// let [first, second] = biarc(Point::ORIGIN, Vector::new(1.0, 0.0), Point::new(10.0, 3.0), Vector::new(0.0, 1.0)).unwrap();
+/// assert_eq!(first.unwrap().start(), Point::ORIGIN);
+/// assert_eq!(second.unwrap().end(), Point::new(10.0, 3.0));
+/// ```
 pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Segment>; 2]> {
+    let b = biarc_pieces(p0, t0, p1, t1)?;
+    let mut pieces = b.pieces().iter().map(Piece::segment);
+    Some([pieces.next(), pieces.next()])
+}
+
+/// The one or two pieces of a biarc.
+#[derive(Debug, Clone, Copy)]
+struct Biarc {
+    list: [Piece; 2],
+    count: usize,
+}
+
+impl Biarc {
+    fn pieces(&self) -> &[Piece] {
+        &self.list[..self.count]
+    }
+}
+
+/// [`biarc`] as the fit tries it: pieces not yet made segments.
+fn biarc_pieces(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Biarc> {
     let v = p1 - p0;
     let vv = v.length_sq();
     if vv == 0.0 {
@@ -218,7 +349,11 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Seg
     let d = if denom.abs() < 1e-12 {
         // Parallel end tangents: a straight piece, or the symmetric S-curve.
         if v.cross(t0).abs() <= 1e-12 * vv.sqrt() && v.dot(t0) > 0.0 {
-            return Some([Some(Segment::Line(Line::new(p0, p1))), None]);
+            let line = Piece::Line { start: p0, end: p1 };
+            return Some(Biarc {
+                list: [line; 2],
+                count: 1,
+            });
         }
         let vt = v.dot(t1);
         if vt.abs() < 1e-300 {
@@ -237,18 +372,54 @@ pub fn biarc(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<[Option<Seg
         0.5 * (p0.y + p1.y + d * (t0.y - t1.y)),
     );
     // The arcs keep p0, j and p1 as their ends (see `Arc::from_center`).
-    let piece = |segment: Segment| (segment.length() > 0.0).then_some(segment);
     let first = arc_from_tangent(p0, t0, j)?;
-    let second = arc_from_tangent(p1, -t1, j)?.reversed();
-    Some([piece(first), piece(second)])
+    let second = reversed(arc_from_tangent(p1, -t1, j)?);
+    Some(match (first.is_empty(), second.is_empty()) {
+        (false, false) => Biarc {
+            list: [first, second],
+            count: 2,
+        },
+        (true, false) => Biarc {
+            list: [second; 2],
+            count: 1,
+        },
+        (false, true) => Biarc {
+            list: [first; 2],
+            count: 1,
+        },
+        (true, true) => return None,
+    })
+}
+
+/// The piece run the other way.
+fn reversed(piece: Piece) -> Piece {
+    match piece {
+        Piece::Line { start, end } => Piece::Line {
+            start: end,
+            end: start,
+        },
+        Piece::Arc {
+            center,
+            radius,
+            start,
+            end,
+            ccw,
+        } => Piece::Arc {
+            center,
+            radius,
+            start: end,
+            end: start,
+            ccw: !ccw,
+        },
+    }
 }
 
 /// The arc (or line) that leaves `p` along unit tangent `t` and ends at `q`.
-fn arc_from_tangent(p: Point, t: Vector, q: Point) -> Option<Segment> {
+fn arc_from_tangent(p: Point, t: Vector, q: Point) -> Option<Piece> {
     let w = q - p;
     let ww = w.length_sq();
     if ww == 0.0 {
-        return Some(Segment::Line(Line::new(p, q)));
+        return Some(Piece::Line { start: p, end: q });
     }
     let n = t.perp();
     let nw = n.dot(w);
@@ -257,10 +428,16 @@ fn arc_from_tangent(p: Point, t: Vector, q: Point) -> Option<Segment> {
     // Distance of the arc from its chord, roughly: a flatter arc is a line.
     let sagitta = 0.5 * nw.abs();
     if !s.is_finite() || sagitta < super::curve::FLAT_ARC {
-        return (w.dot(t) > 0.0).then_some(Segment::Line(Line::new(p, q)));
+        return (w.dot(t) > 0.0).then_some(Piece::Line { start: p, end: q });
     }
     let center = p + n * s;
-    Some(Segment::Arc(Arc::from_center(center, p, q, s > 0.0)))
+    Some(Piece::Arc {
+        center,
+        radius: s.abs(),
+        start: p,
+        end: q,
+        ccw: s > 0.0,
+    })
 }
 
 #[cfg(test)]
@@ -278,6 +455,16 @@ mod tests {
             t0: 0.0,
             sweep: std::f64::consts::TAU,
         }
+    }
+
+    #[test]
+    fn every_sample_is_taken_once_and_the_coarse_ones_spread_evenly() {
+        let mut order = SAMPLE_ORDER;
+        order.sort_unstable();
+        assert!(order.iter().enumerate().all(|(i, &k)| i == k));
+        let mut coarse = SAMPLE_ORDER[..COARSE_SAMPLES].to_vec();
+        coarse.sort_unstable();
+        assert_eq!(coarse, [0, 3, 6, 9, 12, 15, 18, 21, 24]);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! under the affine transforms of block insertion and object coordinate systems.
 
 use super::biarc::SmoothCurve;
-use super::span_polynomial::SpanPolynomial;
+use super::span_polynomial::SpanRun;
 use crate::geom::{Arc, Line, Point, Segment, Vector};
 
 /// An arc that strays less than this from its chord (mm) is a line: huge radii only cost
@@ -216,13 +216,13 @@ impl SmoothCurve for EllipseArc {
     }
 }
 
-impl SmoothCurve for SpanPolynomial {
+impl SmoothCurve for SpanRun {
     fn point(&self, t: f64) -> Point {
-        SpanPolynomial::point(self, t)
+        SpanRun::point(self, t)
     }
 
     fn derivatives(&self, t: f64) -> (Point, Vector, Vector) {
-        SpanPolynomial::derivatives(self, t)
+        SpanRun::derivatives(self, t)
     }
 }
 
@@ -430,8 +430,9 @@ impl Curve {
                 }
             },
             Curve::Spline(s) => {
-                for (k, a, b) in s.spans() {
-                    super::biarc::fit(&SpanPolynomial::new(s, k), a, b, tolerance, out);
+                for run in SpanRun::runs(s) {
+                    let (a, b) = run.domain();
+                    super::biarc::fit(&run, a, b, tolerance, out);
                 }
             }
         }

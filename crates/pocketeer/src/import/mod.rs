@@ -4,6 +4,7 @@
 
 mod analysis;
 pub mod biarc;
+pub mod biarc_piece;
 pub mod chain;
 pub mod curve;
 mod dangles;

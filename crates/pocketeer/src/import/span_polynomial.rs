@@ -4,6 +4,7 @@
 
 use super::curve::{Nurbs, MAX_DEGREE};
 use crate::geom::{Point, Vector};
+use std::cell::Cell;
 
 /// The piece of a NURBS on one knot span `[a, b]`, as homogeneous coordinates `(x·w, y·w, w)`
 /// that are polynomials in `s = (t − a) / (b − a)` ∈ [0, 1].
@@ -77,7 +78,8 @@ impl SpanPolynomial {
                 *nv = *nv * s + cv;
             }
         }
-        Point::new(n[0] / n[2], n[1] / n[2])
+        let w = 1.0 / n[2];
+        Point::new(n[0] * w, n[1] * w)
     }
 
     /// The point at parameter `t` with the curve's first and second derivatives there (with
@@ -103,6 +105,95 @@ impl SpanPolynomial {
         let d1 = (Vector::new(n1[0], n1[1]) - p * w1) / w;
         let d2 = (Vector::new(2.0 * n2[0], 2.0 * n2[1]) - d1 * (2.0 * w1) - p * w2) / w;
         (Point::new(p.x, p.y), d1 * self.rate, d2 * (self.rate * self.rate))
+    }
+}
+
+/// Consecutive knot spans of a NURBS joined where the curve is at least tangent-continuous
+/// (an inner knot of multiplicity below the degree), evaluated as one curve: the curve fitting
+/// then places its arcs by the curve's shape, not by where the knots fall, and a run of short
+/// spans takes as few arcs as its shape needs.
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// use pocketeer::import::curve::Nurbs;
+/// use pocketeer::import::span_polynomial::SpanRun;
+/// let pts = [Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(3.0, 3.0), Point::new(4.0, 0.0), Point::new(6.0, 1.0)];
+/// let s = Nurbs::through(&pts).unwrap();
+/// let runs = SpanRun::runs(&s);
+/// assert_eq!(runs.len(), 1); // a cubic through points is smooth at every inner knot
+/// let (a, b) = runs[0].domain();
+/// for i in 0..=10 {
+///     let t = a + (b - a) * i as f64 / 10.0;
+///     assert!(runs[0].point(t).distance(s.point(t)) < 1e-12);
+/// }
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpanRun {
+    /// The spans' first parameters, increasing.
+    starts: Vec<f64>,
+    /// The last span's end.
+    end: f64,
+    /// One polynomial per span.
+    pieces: Vec<SpanPolynomial>,
+    /// The span the last evaluation fell in: the fitting evaluates along the curve, so the
+    /// next one almost always falls in it too.
+    last: Cell<usize>,
+}
+
+impl SpanRun {
+    /// The curve's spans grouped into runs, in order: a new run starts at a knot where the
+    /// curve may turn a corner or jump (multiplicity at least the degree), and at every knot
+    /// of a degree-1 spline.
+    pub fn runs(nurbs: &Nurbs) -> Vec<SpanRun> {
+        let mut runs: Vec<SpanRun> = Vec::new();
+        for (k, a, b) in nurbs.spans() {
+            let multiplicity = nurbs.knots.iter().filter(|&&u| u == a).count();
+            let smooth = multiplicity < nurbs.degree;
+            let piece = SpanPolynomial::new(nurbs, k);
+            match runs.last_mut() {
+                Some(run) if smooth && run.end == a => {
+                    run.starts.push(a);
+                    run.pieces.push(piece);
+                    run.end = b;
+                }
+                _ => runs.push(SpanRun {
+                    starts: vec![a],
+                    end: b,
+                    pieces: vec![piece],
+                    last: Cell::new(0),
+                }),
+            }
+        }
+        runs
+    }
+
+    /// The first and last parameter.
+    pub fn domain(&self) -> (f64, f64) {
+        (self.starts[0], self.end)
+    }
+
+    /// The span holding `t` (the first or last one beyond the domain).
+    fn piece(&self, t: f64) -> &SpanPolynomial {
+        let last = self.last.get();
+        let after = self.starts.get(last + 1).copied().unwrap_or(f64::INFINITY);
+        let k = if self.starts[last] <= t && t < after {
+            last
+        } else {
+            let k = self.starts.partition_point(|&s| s <= t).saturating_sub(1);
+            self.last.set(k);
+            k
+        };
+        &self.pieces[k]
+    }
+
+    /// The point at parameter `t`.
+    pub fn point(&self, t: f64) -> Point {
+        self.piece(t).point(t)
+    }
+
+    /// The point at parameter `t` with the first and second derivatives there.
+    pub fn derivatives(&self, t: f64) -> (Point, Vector, Vector) {
+        self.piece(t).derivatives(t)
     }
 }
 
