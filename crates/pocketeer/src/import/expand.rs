@@ -17,10 +17,10 @@ pub const MAX_CURVES: usize = 2_000_000;
 pub struct Placed {
     /// The curve.
     pub curve: Curve,
-    /// The layer it is drawn on (block entities on layer 0 take the layer of their INSERT).
-    pub layer: String,
-    /// The entity (inside blocks, the innermost one), for messages.
-    pub entity: EntityRef,
+    /// Index into [`Expander::sources`]: the entity placement it was drawn by, with the layer
+    /// it is drawn on (one for all the curves of a polyline: a hundred thousand vertices are
+    /// not a hundred thousand copies of its name and layer).
+    pub source: usize,
     /// For the curves of one closed polyline (one placement of it): a number shared by them,
     /// which are a contour by themselves, in order.
     pub closed_group: Option<usize>,
@@ -31,6 +31,10 @@ pub struct Expander<'a> {
     doc: &'a Document,
     /// Curves found.
     pub placed: Vec<Placed>,
+    /// The entity of each placement that drew curves (inside blocks, the innermost one), for
+    /// messages; its layer is the one drawn on (block entities on layer 0 take the layer of
+    /// their INSERT).
+    pub sources: Vec<EntityRef>,
     /// Remarks (unknown blocks).
     pub warnings: Vec<ImportWarning>,
     stack: Vec<String>,
@@ -45,6 +49,7 @@ impl<'a> Expander<'a> {
         Expander {
             doc,
             placed: Vec::new(),
+            sources: Vec::new(),
             warnings: Vec::new(),
             stack: Vec::new(),
             groups: 0,
@@ -78,12 +83,14 @@ impl<'a> Expander<'a> {
                     });
                     // Once per entity: finding the handle scans the entity's groups, which
                     // for a long polyline are many.
-                    let reference = e.reference(&layer);
+                    let source = self.sources.len();
+                    self.sources.push(e.reference(&layer));
+                    self.placed.reserve(curves.len());
                     for c in curves {
                         let curve = c.transformed(m);
                         if let Err(p) = curve.check_coordinates(super::MAX_COORDINATE) {
                             return Err(ImportError::BadEntity {
-                                entity: reference,
+                                entity: e.reference(&layer),
                                 what: format!(
                                     "coordinate ({}, {}) is not a number or lies beyond ±{:e} mm",
                                     super::error::fmt_number(p.x),
@@ -94,8 +101,7 @@ impl<'a> Expander<'a> {
                         }
                         self.placed.push(Placed {
                             curve,
-                            layer: layer.clone(),
-                            entity: reference.clone(),
+                            source,
                             closed_group,
                         });
                     }

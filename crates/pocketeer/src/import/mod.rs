@@ -147,8 +147,8 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
     let mut expander = expand::Expander::new(&doc);
     expander.walk(&model, &Affine::scale(units.mm()), None)?;
     warnings.append(&mut expander.warnings);
-    let layers = layer_names(&doc, &expander.placed, options, &mut warnings);
-    let (elements, sources, extent) = elements_of(expander.placed, &layers, options);
+    let layers = layer_names(&doc, &expander.sources, options, &mut warnings);
+    let (elements, sources, extent) = elements_of(expander.placed, expander.sources, &layers, options);
     if elements.is_empty() {
         return Err(nothing_to_pocket(options, &layers, &entity_counts));
     }
@@ -192,14 +192,14 @@ fn drawing_units(
 /// layer asked for that the drawing does not have.
 fn layer_names(
     doc: &dxf::Document,
-    placed: &[expand::Placed],
+    sources: &[EntityRef],
     options: &ImportOptions,
     warnings: &mut Vec<ImportWarning>,
 ) -> Vec<String> {
     let mut layers = doc.layers.clone();
-    for p in placed {
-        if !layers.iter().any(|l| l.eq_ignore_ascii_case(&p.layer)) {
-            layers.push(p.layer.clone());
+    for s in sources {
+        if !layers.iter().any(|l| l.eq_ignore_ascii_case(&s.layer)) {
+            layers.push(s.layer.clone());
         }
     }
     if let Some(wanted) = &options.layers {
@@ -219,6 +219,7 @@ fn layer_names(
 /// from, and their extent.
 fn elements_of(
     placed: Vec<expand::Placed>,
+    sources: Vec<EntityRef>,
     layers: &[String],
     options: &ImportOptions,
 ) -> (Vec<Element>, Vec<EntityRef>, Aabb) {
@@ -228,30 +229,34 @@ fn elements_of(
             .as_ref()
             .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(layer)))
     };
-    let kept: Vec<(usize, expand::Placed)> = placed
-        .into_iter()
-        .filter(|p| keep(&p.layer))
-        .map(|p| {
-            let layer = layers
-                .iter()
-                .position(|l| l.eq_ignore_ascii_case(&p.layer))
-                .unwrap_or(0);
-            (layer, p)
+    // The layer of each source by its index, when kept: once per entity, not per curve.
+    let layer_of: Vec<Option<usize>> = sources
+        .iter()
+        .map(|s| {
+            keep(&s.layer).then(|| {
+                layers
+                    .iter()
+                    .position(|l| l.eq_ignore_ascii_case(&s.layer))
+                    .unwrap_or(0)
+            })
         })
         .collect();
-    let pieces = curves_to_segments(&kept);
-    let mut elements = Vec::new();
-    let mut sources = Vec::new();
+    let kept: Vec<expand::Placed> = placed
+        .into_iter()
+        .filter(|p| layer_of[p.source].is_some())
+        .collect();
+    let (segments, counts) = curves_to_segments(&kept);
+    let mut elements = Vec::with_capacity(segments.len());
     let mut extent = Aabb::EMPTY;
-    for ((layer, p), segs) in kept.into_iter().zip(pieces) {
-        let source = sources.len();
-        sources.push(p.entity);
-        for s in segs {
+    let mut segments = segments.into_iter();
+    for (p, count) in kept.iter().zip(counts) {
+        let layer = layer_of[p.source].unwrap_or(0);
+        for s in segments.by_ref().take(count) {
             extent = extent.union(&s.bbox());
             elements.push(Element {
                 segment: s,
                 layer,
-                source,
+                source: p.source,
                 closed_group: p.closed_group,
             });
         }
@@ -259,15 +264,38 @@ fn elements_of(
     (elements, sources, extent)
 }
 
-/// Each placed curve as lines and arcs, in order. Fitting arcs to splines and ellipses is
-/// most of the time a drawing of traced art takes to read, and each curve is fitted alone.
-fn curves_to_segments(kept: &[(usize, expand::Placed)]) -> Vec<Vec<Segment>> {
-    crate::parallel::map(kept, |(_, p)| {
-        let mut segs = Vec::new();
-        p.curve.to_segments(CURVE_TOLERANCE, &mut segs);
-        segs
-    })
+/// The placed curves as lines and arcs, in order, and how many each gave. Fitting arcs to
+/// splines and ellipses is most of the time a drawing of traced art takes to read, and each
+/// curve is fitted alone: the curves are shared out among the cores in runs, each run writing
+/// one list (a list per curve would be an allocation per line of a long polyline).
+fn curves_to_segments(kept: &[expand::Placed]) -> (Vec<Segment>, Vec<usize>) {
+    let run = (kept.len() / RUNS).clamp(1, MAX_CURVES_PER_RUN);
+    let runs: Vec<&[expand::Placed]> = kept.chunks(run).collect();
+    let done = crate::parallel::map(&runs, |run| {
+        let mut segments = Vec::with_capacity(run.len());
+        let mut counts = Vec::with_capacity(run.len());
+        for p in run.iter() {
+            let before = segments.len();
+            p.curve.to_segments(CURVE_TOLERANCE, &mut segments);
+            counts.push(segments.len() - before);
+        }
+        (segments, counts)
+    });
+    let total = done.iter().map(|(s, _)| s.len()).sum();
+    let mut segments = Vec::with_capacity(total);
+    let mut counts = Vec::with_capacity(kept.len());
+    for (s, c) in done {
+        segments.extend(s);
+        counts.extend(c);
+    }
+    (segments, counts)
 }
+
+/// Runs [`curves_to_segments`] cuts the curves into, at least one curve each: enough for the
+/// parallel map to share them out (it works alone below 256 items).
+const RUNS: usize = 1024;
+/// Most curves in one run: a run of lines is then worth a thread's turn.
+const MAX_CURVES_PER_RUN: usize = 64;
 
 /// Why a drawing whose model space has entities gives no element to pocket.
 fn nothing_to_pocket(

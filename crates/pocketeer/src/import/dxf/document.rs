@@ -114,6 +114,11 @@ impl Cursor {
     fn last_pos(&self) -> Pos {
         self.groups.last().map(|g| g.pos).unwrap_or(Pos::Line(1))
     }
+    /// How many groups come before the next one with code 0.
+    fn until_next_zero(&self) -> usize {
+        let rest = self.groups.get(self.at..).unwrap_or_default();
+        rest.iter().position(|g| g.code == 0).unwrap_or(rest.len())
+    }
     /// Skips to the next group with code 0.
     fn skip_to_next_zero(&mut self) {
         while let Some(g) = self.peek() {
@@ -296,15 +301,16 @@ fn read_entities(cur: &mut Cursor, stop: &[&str]) -> (Vec<RawEntity>, bool) {
         }
         let pos = g.pos;
         cur.next();
+        // Sized once: a polyline of a hundred thousand vertices would otherwise be copied
+        // some twenty times as it grew.
+        let count = cur.until_next_zero();
         let mut entity = RawEntity {
             kind,
-            groups: Vec::new(),
+            groups: Vec::with_capacity(count),
             pos,
             vertices: Vec::new(),
         };
-        while cur.peek().is_some_and(|h| h.code != 0) {
-            entity.groups.extend(cur.next());
-        }
+        entity.groups.extend((0..count).map_while(|_| cur.next()));
         match entity.kind.as_str() {
             "VERTEX" => {
                 if let Some(poly) = out.last_mut().filter(|e| e.kind == "POLYLINE") {

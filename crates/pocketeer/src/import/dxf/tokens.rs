@@ -109,14 +109,18 @@ fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
             "the file contains binary data but no binary DXF header".into(),
         ));
     }
+    // Two lines a group: sized once, not regrown (a regrowth copies every group read so far).
+    let line_count = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
+    let mut out = Groups {
+        groups: Vec::with_capacity(line_count / 2 + 1),
+        ..Groups::default()
+    };
     let mut lines = bytes
         .split(|&b| b == b'\n')
         .map(|l| l.strip_suffix(b"\r").unwrap_or(l))
         .enumerate();
-    let mut out = Groups::default();
     while let Some((i, code_line)) = lines.next() {
-        let code_text = decode(code_line);
-        let code_trim = code_text.trim();
+        let code_trim = code_line.trim_ascii();
         if code_trim.is_empty() {
             // Blank lines before the first group or at the very end are harmless.
             if out.groups.is_empty() {
@@ -126,14 +130,13 @@ fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
                 break;
             }
         }
-        let Ok(code) = code_trim.parse::<i32>() else {
+        let Some(code) = group_code(code_trim) else {
+            let shown: String = decode(code_trim).chars().take(40).collect();
             if out.groups.is_empty() {
-                let shown: String = code_trim.chars().take(40).collect();
                 return Err(ImportError::NotDxf(format!(
                     "line 1 should be a group code, found '{shown}'"
                 )));
             }
-            let shown: String = code_trim.chars().take(40).collect();
             return Err(ImportError::Syntax {
                 pos: Pos::Line(i + 1),
                 what: format!("expected a group code, found '{shown}'"),
@@ -161,6 +164,30 @@ fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
         return Err(ImportError::NotDxf("the file is empty".into()));
     }
     Ok(out)
+}
+
+/// A group code as written on its line (blanks trimmed): an optional sign and decimal digits
+/// that fit an `i32`, read from the bytes without making a string of them.
+fn group_code(text: &[u8]) -> Option<i32> {
+    let (negative, digits) = match text.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        Some((b'+', rest)) => (false, rest),
+        _ => (false, text),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut value: i64 = 0;
+    for &d in digits {
+        if !d.is_ascii_digit() {
+            return None;
+        }
+        value = value * 10 + i64::from(d - b'0');
+        if value > i64::from(i32::MAX) + 1 {
+            return None;
+        }
+    }
+    i32::try_from(if negative { -value } else { value }).ok()
 }
 
 /// The value of an ASCII group: numbers of the codes that hold them are stored as numbers
@@ -310,6 +337,25 @@ mod tests {
         assert_eq!(g.groups.len(), 4);
         assert_eq!(g.groups[2].real(), Some(1.5));
         assert_eq!(g.groups[2].pos, Pos::Line(5));
+    }
+
+    #[test]
+    fn group_codes_read_like_integers() {
+        for (text, code) in [
+            ("0", Some(0)),
+            ("999", Some(999)),
+            ("-5", Some(-5)),
+            ("+7", Some(7)),
+        ] {
+            assert_eq!(group_code(text.as_bytes()), code, "{text}");
+        }
+        let max = i32::MAX.to_string();
+        let min = i32::MIN.to_string();
+        assert_eq!(group_code(max.as_bytes()), Some(i32::MAX));
+        assert_eq!(group_code(min.as_bytes()), Some(i32::MIN));
+        for bad in ["", "-", "1.0", "1 0", "2147483648", "99999999999999999999", "x"] {
+            assert_eq!(group_code(bad.as_bytes()), None, "{bad}");
+        }
     }
 
     #[test]
