@@ -12,7 +12,7 @@ use crate::clear::{plan_prepared, ClearError, ClearParams, ClearPlan};
 use crate::geom::PreparedPocket;
 use crate::geom::Tolerance;
 use crate::geom::{Pocket, Point};
-use crate::link::{link, LinkError, LinkParams, Linked};
+use crate::link::{link_with, LinkError, LinkParams, Linked};
 use thiserror::Error;
 
 /// Why a job cannot be planned.
@@ -123,8 +123,6 @@ pub fn pocket_job_with(
             plan
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let loops: usize = plans.iter().map(ClearPlan::loop_count).sum();
-    progress.stage(&format!("linking {loops} loops"), None);
     if !pockets.is_empty() && plans.iter().all(|p| p.parts.is_empty()) {
         return Err(JobError::ToolFitsNowhere {
             diameter: 2.0 * clear.tool_radius,
@@ -137,7 +135,7 @@ pub fn pocket_job_with(
         .zip(&plans)
         .filter(|(_, p)| !p.parts.is_empty())
         .collect();
-    let linked = link(&jobs, link_params, tol)?;
+    let linked = link_with(&jobs, link_params, tol, progress)?;
     let warnings = (plans.iter().zip(pockets).enumerate())
         .filter(|(_, (plan, _))| plan.parts.is_empty())
         .map(|(i, (_, p))| JobWarning::TooNarrow {

@@ -202,11 +202,29 @@ pub fn link(
     params: &LinkParams,
     tol: &Tolerance,
 ) -> Result<Linked, LinkError> {
+    link_with(jobs, params, tol, &crate::progress::Silent)
+}
+
+/// [`link`], telling `progress` of the loops cut: the stage `linking N loops` with a step for
+/// each loop or clean-up path at each pass depth.
+pub fn link_with(
+    jobs: &[(&PreparedPocket, &ClearPlan)],
+    params: &LinkParams,
+    tol: &Tolerance,
+    progress: &dyn crate::progress::Progress,
+) -> Result<Linked, LinkError> {
     params.check()?;
+    let passes = pass_depths(params.depth, params.step_down);
+    let loops: usize = jobs.iter().map(|(_, plan)| plan.loop_count()).sum();
+    progress.stage(
+        &format!("linking {loops} loops"),
+        Some((loops * passes.len()) as u64),
+    );
     let start = Point3::new(0.0, 0.0, params.safe_z);
     let mut linker = Linker {
         params,
         tol,
+        progress,
         path: Toolpath::new(start),
         warnings: Vec::new(),
         pocket: jobs.first().map(|j| j.0),
@@ -216,7 +234,6 @@ pub fn link(
         down: false,
         last: (Vec::new(), false),
     };
-    let passes = pass_depths(params.depth, params.step_down);
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
     let pieces: Vec<(usize, usize)> = (jobs.iter().enumerate())
@@ -252,6 +269,8 @@ pub fn link(
 struct Linker<'a> {
     params: &'a LinkParams,
     tol: &'a Tolerance,
+    /// Told of each path cut.
+    progress: &'a dyn crate::progress::Progress,
     path: Toolpath,
     warnings: Vec<LinkWarning>,
     pocket: Option<&'a PreparedPocket>,
@@ -435,6 +454,7 @@ impl<'a> Linker<'a> {
     /// uncut stock (the first path of a part with nothing inside it), else reached at depth
     /// within `reach`.
     fn cut_path(&mut self, part: &Part, item: &Path, enter: bool, reach: Reach) {
+        self.progress.advance(1);
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;

@@ -346,3 +346,58 @@ fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
         );
     }
 }
+
+/// Records the stages and steps a run reports.
+#[derive(Default)]
+struct Recorded {
+    stages: std::sync::Mutex<Vec<(String, Option<u64>)>>,
+    steps: std::sync::atomic::AtomicU64,
+}
+
+impl crate::progress::Progress for Recorded {
+    fn stage(&self, name: &str, steps: Option<u64>) {
+        if let Ok(mut s) = self.stages.lock() {
+            s.push((name.to_owned(), steps));
+        }
+    }
+    fn advance(&self, n: u64) {
+        self.steps.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[test]
+fn linking_reports_a_step_for_each_loop_and_clean_up_path_at_each_pass() {
+    // Islands and a wide stepover: loops round islands and clean-up paths besides the outer
+    // loops; three passes.
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 60.0, 40.0),
+        islands: vec![
+            rect(15.0, 15.0, 22.0, 25.0).reversed(),
+            rect(38.0, 12.0, 45.0, 28.0).reversed(),
+        ],
+    };
+    let (plan, prepared) = planned(&pocket, 5.0);
+    let cleanups: usize = plan.parts.iter().map(|p| p.cleanups.len()).sum();
+    let holes: usize = plan.parts.iter().map(|p| p.holes.len()).sum();
+    assert!(
+        cleanups > 0 && holes > 0,
+        "{cleanups} clean-up paths, {holes} loops round islands"
+    );
+    let p = LinkParams {
+        depth: 6.0,
+        ..params(Entry::Helix)
+    };
+    let progress = Recorded::default();
+    let l = link_with(&[(&prepared, &plan)], &p, &Tolerance::default(), &progress).unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    let loops = plan.loop_count();
+    let stages = progress.stages.lock().unwrap().clone();
+    assert_eq!(
+        stages,
+        vec![(format!("linking {loops} loops"), Some(3 * loops as u64))]
+    );
+    assert_eq!(
+        progress.steps.load(std::sync::atomic::Ordering::Relaxed),
+        3 * loops as u64
+    );
+}
