@@ -24,7 +24,8 @@ fn main() {
 
 /// The case's rings as closed LWPOLYLINEs on layer 0, in millimetres.
 fn dxf(case: &Case) -> String {
-    let mut s = String::from("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
+    let mut s =
+        String::from("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
     for ring in &case.rings {
         let _ = write!(s, "0\nLWPOLYLINE\n8\n0\n90\n{}\n70\n1\n", ring.len());
         for &(x, y, bulge) in ring {

@@ -1,7 +1,12 @@
 //! The tool paths themselves, not the time to make them: machining time at fixed rates, cutting
 //! length, retracts and the tool's engagement of the program `pocket` writes with default
 //! flags, on drawings of the kinds the shop cuts, each checked for gouge and leftover.
-//! `cargo run --release --bin linking [-- --only NAME]`
+//! `cargo run --release --bin linking [-- --only NAME] [--dxf DIR] [--freecad DIR]`
+//!
+//! `--dxf DIR` writes each drawing to `DIR/<name>.dxf` (and `DIR/drawings.tsv`: name, tool
+//! diameter, stepover %); `--freecad DIR` reads FreeCAD's program
+//! for it from `DIR/<name>.nc` (made by `scripts/freecad-compare`, which runs both) and adds its
+//! time, retracts, check and our time's ratio to it, both checked and timed alike.
 //!
 //! The rates are the ones the FreeCAD comparison of issue 18 uses: feed 1000, plunge 300,
 //! rapid 5000 mm/min, entries, retracts and links all counted by length; the first time column
@@ -9,13 +14,17 @@
 //! the second adds the half second a retract that `pocket` weighs its choices with by default.
 
 use pocketeer::clear::ClearParams;
+use pocketeer::export::dxf::{write_dxf, LayeredContour};
 use pocketeer::geom::{Pocket, Tolerance};
+use pocketeer::import::Units;
 use pocketeer::job::pocket_job;
 use pocketeer::link::{Direction, Entry, LinkParams};
 use pocketeer::post::{write_gcode, Dialect, ProgramSettings, ProgramUnits};
+use pocketeer::simulate::CheckReport;
 use pocketeer::simulate::{check_program, read_program, CheckParams};
 use pocketeer_bench::cases::{self, Ring};
 use std::f64::consts::{PI, TAU};
+use std::path::PathBuf;
 
 const FEED: f64 = 1000.0;
 const PLUNGE: f64 = 300.0;
@@ -192,22 +201,70 @@ fn drawings() -> Vec<Drawing> {
     out
 }
 
+/// The drawing's file name: its name in lower case, words joined by dashes.
+fn slug(name: &str) -> String {
+    let words: Vec<String> = name
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_ascii_lowercase)
+        .collect();
+    words.join("-")
+}
+
+/// The drawing as DXF: every pocket's boundary and islands on layer 0.
+fn dxf_of(d: &Drawing) -> String {
+    let contours: Vec<LayeredContour> = d
+        .pockets
+        .iter()
+        .flat_map(|p| std::iter::once(&p.boundary).chain(&p.islands))
+        .map(|contour| LayeredContour { layer: "0", contour })
+        .collect();
+    write_dxf(&contours, Units::Millimeters)
+}
+
+/// The value of flag `name`, when given.
+fn flag(args: &[String], name: &str) -> Option<String> {
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .cloned()
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let only = args
-        .iter()
-        .position(|a| a == "--only")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
+    let only = flag(&args, "--only");
+    let dxf_dir = flag(&args, "--dxf").map(PathBuf::from);
+    let freecad_dir = flag(&args, "--freecad").map(PathBuf::from);
     let tol = Tolerance::default();
-    println!(
-        "| drawing | time s | time s, 0.5 s a retract | cutting mm | rapid mm | retracts | p95 engagement ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
-    );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    if freecad_dir.is_some() {
+        println!(
+            "| drawing | time s | FreeCAD time s | ratio | retracts | FreeCAD retracts | cutting mm | FreeCAD cutting mm | FreeCAD gouge mm | FreeCAD thickest leftover mm |"
+        );
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    } else {
+        println!(
+            "| drawing | time s | time s, 0.5 s a retract | cutting mm | rapid mm | retracts | p95 engagement ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
+        );
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
+    let (mut freecad_time, mut ours_beside_freecad) = (0.0, 0.0);
+    // With --dxf: each drawing's file name, tool diameter and stepover (%), for the script
+    // that has FreeCAD pocket them.
+    let mut manifest = String::new();
     for d in drawings() {
         if only.as_ref().is_some_and(|o| !d.name.contains(o.as_str())) {
             continue;
+        }
+        if let Some(dir) = &dxf_dir {
+            let path = dir.join(format!("{}.dxf", slug(&d.name)));
+            std::fs::write(&path, dxf_of(&d)).expect("the drawing is written");
+            manifest.push_str(&format!(
+                "{}\t{}\t{:.0}\n",
+                slug(&d.name),
+                d.tool,
+                100.0 * d.stepover
+            ));
         }
         let r = 0.5 * d.tool;
         let clear = ClearParams {
@@ -246,22 +303,40 @@ fn main() {
             ..ProgramSettings::default()
         };
         let text = write_gcode(&job.linked.toolpath, &settings, Dialect::LinuxCnc);
-        let program = read_program(&text).expect("our program reads back");
-        let params = CheckParams {
-            tool_radius: r,
-            depth: Some(3.0),
-            gouge_tolerance: 0.01,
-            leftover_tolerance: 0.05,
-            rapid_rate: RAPID,
-            per_retract: 0.0,
-        };
-        let report = check_program(&d.pockets, &program, &params, &tol).expect("the check runs");
+        let report = checked(&d, &text, &tol).expect("our program reads back");
         let e = &report.engagement;
         let with =
             report.seconds + pocketeer::machining_time::DEFAULT_RETRACT_SECONDS * report.retracts as f64;
         total_time += report.seconds;
         total_with += with;
         total_retracts += report.retracts;
+        if let Some(dir) = &freecad_dir {
+            let path = dir.join(format!("{}.nc", slug(&d.name)));
+            let theirs = std::fs::read_to_string(&path)
+                .map_err(|e| format!("{}: {e}", path.display()))
+                .and_then(|t| checked(&d, &t, &tol));
+            match theirs {
+                Ok(f) => {
+                    freecad_time += f.seconds;
+                    ours_beside_freecad += report.seconds;
+                    println!(
+                        "| {} | {:.1} | {:.1} | {:.3} | {} | {} | {:.1} | {:.1} | {:.4} | {:.4} |",
+                        d.name,
+                        report.seconds,
+                        f.seconds,
+                        report.seconds / f.seconds,
+                        report.retracts,
+                        f.retracts,
+                        report.cut_length,
+                        f.cut_length,
+                        f.gouge,
+                        f.thickest
+                    );
+                }
+                Err(e) => println!("| {} | {:.1} | no FreeCAD program: {e} |", d.name, report.seconds),
+            }
+            continue;
+        }
         println!(
             "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.0} | {:.0} | {:.1} | {:.4} | {:.4} |",
             d.name,
@@ -277,5 +352,30 @@ fn main() {
             report.thickest
         );
     }
-    println!("| total | {total_time:.1} | {total_with:.1} | | | {total_retracts} | | | | | |");
+    if let Some(dir) = &dxf_dir {
+        std::fs::write(dir.join("drawings.tsv"), manifest).expect("the list of drawings is written");
+    }
+    if freecad_dir.is_some() {
+        println!(
+            "| total | {ours_beside_freecad:.1} | {freecad_time:.1} | {:.3} | | | | | | |",
+            ours_beside_freecad / freecad_time
+        );
+    } else {
+        println!("| total | {total_time:.1} | {total_with:.1} | | | {total_retracts} | | | | | |");
+    }
+}
+
+/// The program `text` replayed against the drawing: time at the fixed rates from lengths alone
+/// (no cost per retract), gouge and leftover.
+fn checked(d: &Drawing, text: &str, tol: &Tolerance) -> Result<CheckReport, String> {
+    let program = read_program(text).map_err(|e| format!("cannot read the program: {e}"))?;
+    let params = CheckParams {
+        tool_radius: 0.5 * d.tool,
+        depth: Some(3.0),
+        gouge_tolerance: 0.01,
+        leftover_tolerance: 0.05,
+        rapid_rate: RAPID,
+        per_retract: 0.0,
+    };
+    check_program(&d.pockets, &program, &params, tol).map_err(|e| format!("the check fails: {e}"))
 }

@@ -30,6 +30,18 @@ pub struct ChainedContour {
     pub elements: Vec<usize>,
 }
 
+impl ChainedContour {
+    /// The same layer and elements with `contour` in place of this contour (not copied first:
+    /// `ChainedContour { contour, ..c.clone() }` copies every segment only to drop them).
+    pub fn with_contour(&self, contour: Contour) -> ChainedContour {
+        ChainedContour {
+            contour,
+            layer: self.layer,
+            elements: self.elements.clone(),
+        }
+    }
+}
+
 /// A chain of elements that does not close.
 #[derive(Debug, Clone)]
 pub struct OpenChain {

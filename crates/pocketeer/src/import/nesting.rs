@@ -153,7 +153,7 @@ fn simplified(
                         at: p,
                     });
                 }
-                simple.push(ChainedContour { contour, ..c.clone() });
+                simple.push(c.with_contour(contour));
                 origin.push(k);
             }
             (Err(x), None) => {
@@ -171,7 +171,7 @@ fn simplified(
                     at,
                 });
                 for contour in loops {
-                    simple.push(ChainedContour { contour, ..c.clone() });
+                    simple.push(c.with_contour(contour));
                     origin.push(k);
                 }
             }
