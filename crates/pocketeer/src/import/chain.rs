@@ -223,30 +223,50 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
             alive[i] = false;
         }
     }
-    for members in groups.values() {
-        let segs: Vec<Segment> = members.iter().map(|&i| elements[i].segment).collect();
-        let length: f64 = segs.iter().map(Segment::length).sum();
-        if length <= node_distance(tol) {
-            out.zero_length_dropped += members.len();
-            continue;
-        }
-        let contour = Contour::new(close_ring(segs));
-        if contour.signed_area().abs() <= node_distance(tol) * length
-            && runs_back_over_itself(&contour.segments, tol)
-        {
-            // Drawn there and back again: a line, not an outline.
-            out.warnings.push(ImportWarning::NoArea {
+    let groups: Vec<Vec<usize>> = groups.into_values().collect();
+    // Each closed polyline is a contour alone, and traced art has thousands: shared out among
+    // the cores, taken in order.
+    let taken = crate::parallel::map(&groups, |members| closed_polyline(elements, members, tol));
+    for (members, t) in groups.iter().zip(taken) {
+        match t {
+            ClosedPolyline::Contour(contour) => out.contours.push(ChainedContour {
+                contour,
+                layer: elements[members[0]].layer,
+                elements: members.clone(),
+            }),
+            ClosedPolyline::ZeroLength => out.zero_length_dropped += members.len(),
+            ClosedPolyline::NoArea(at) => out.warnings.push(ImportWarning::NoArea {
                 elements: members.len(),
-                at: contour.segments[0].start(),
-            });
-            continue;
+                at,
+            }),
         }
-        out.contours.push(ChainedContour {
-            contour,
-            layer: elements[members[0]].layer,
-            elements: members.clone(),
-        });
     }
+}
+
+/// What the elements of one closed polyline make.
+enum ClosedPolyline {
+    /// A contour.
+    Contour(Contour),
+    /// Nothing: they are no longer than the node distance together.
+    ZeroLength,
+    /// Nothing: drawn there and back again, a line and not an outline (where it starts).
+    NoArea(Point),
+}
+
+/// The contour of the closed polyline made of `members` (indices into `elements`, in order).
+fn closed_polyline(elements: &[Element], members: &[usize], tol: &Tolerance) -> ClosedPolyline {
+    let segs: Vec<Segment> = members.iter().map(|&i| elements[i].segment).collect();
+    let length: f64 = segs.iter().map(Segment::length).sum();
+    if length <= node_distance(tol) {
+        return ClosedPolyline::ZeroLength;
+    }
+    let contour = Contour::new(close_ring(segs));
+    if contour.signed_area().abs() <= node_distance(tol) * length
+        && runs_back_over_itself(&contour.segments, tol)
+    {
+        return ClosedPolyline::NoArea(contour.segments[0].start());
+    }
+    ClosedPolyline::Contour(contour)
 }
 
 /// Takes the parts of the drawing that branch (a node where an odd number of three or more
