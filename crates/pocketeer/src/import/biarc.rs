@@ -29,7 +29,8 @@ pub trait SmoothCurve {
 /// The pieces are laid one after the other from `t0`, each as long as fits: a biarc's error
 /// grows with the cube of its length, so the error a try measures sets the length of the next
 /// try. Pieces come out close to the tolerance (halving a failed piece left most of them at an
-/// eighth to a half of it, and twice as many), with about one failed try in three pieces.
+/// eighth to a half of it, and twice as many), with about two failed tries for five pieces (on
+/// the relief drawing of `bench --bin splines`: 363 659 tries for 519 450 arcs and lines).
 pub fn fit(curve: &impl SmoothCurve, t0: f64, t1: f64, tolerance: f64, out: &mut Vec<Segment>) {
     let range = t1 - t0;
     if range == 0.0 || !range.is_finite() {
@@ -71,8 +72,8 @@ pub fn fit(curve: &impl SmoothCurve, t0: f64, t1: f64, tolerance: f64, out: &mut
             .as_ref()
             .map_or(f64::INFINITY, |b| deviation(curve, t, e, b.pieces(), target));
         match candidate {
-            Some(pieces) if at_floor || error <= target => {
-                out.extend(pieces.pieces().iter().map(Piece::segment));
+            Some(biarc) if at_floor || error <= target => {
+                out.extend(biarc.pieces().iter().map(Piece::segment));
                 (t, p, d) = (e, q, dq);
                 step = tried * next_length(error, target).clamp(0.7, 3.0);
             }
