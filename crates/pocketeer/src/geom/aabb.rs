@@ -89,6 +89,21 @@ impl Aabb {
         dx * dx + dy * dy
     }
 
+    /// The distance between this box and `o`: 0 when they touch or overlap.
+    ///
+    /// ```
+    /// use pocketeer::geom::{Aabb, Point};
+    /// let a = Aabb::from_points(Point::new(0.0, 0.0), Point::new(2.0, 1.0));
+    /// let b = Aabb::from_points(Point::new(5.0, 5.0), Point::new(6.0, 6.0));
+    /// assert_eq!(a.distance_to_box(&b), 5.0);
+    /// assert_eq!(a.distance_to_box(&a), 0.0);
+    /// ```
+    pub fn distance_to_box(&self, o: &Aabb) -> f64 {
+        let dx = (self.min.x - o.max.x).max(o.min.x - self.max.x).max(0.0);
+        let dy = (self.min.y - o.max.y).max(o.min.y - self.max.y).max(0.0);
+        dx.hypot(dy)
+    }
+
     /// True when `o` lies entirely inside this box.
     pub fn contains_box(&self, o: &Aabb) -> bool {
         self.contains(o.min) && self.contains(o.max)

@@ -257,16 +257,18 @@ impl SegmentIndex {
 
     /// The nearest segment to the segment `s` if one is nearer than `limit`: the distance and
     /// the nearest point on `s`.
+    ///
+    /// Searched best first, boxes by their distance from the segment's box: a move along a
+    /// wall of thousands of short segments looks at the few nearest, not at every one within
+    /// `limit` of it.
     pub fn nearest_to_segment(&self, s: &Segment, limit: f64, eps: f64) -> Option<(f64, Point)> {
-        let query = s.bbox().inflated(limit);
-        self.tree
-            .search(|b| b.intersects(&query))
-            .map(|i| {
-                let (d, on_s, _) = segment_distance(s, &self.segments[i], eps);
-                (d, on_s)
-            })
-            .filter(|(d, _)| *d < limit)
-            .min_by(|a, b| a.0.total_cmp(&b.0))
+        let sb = s.bbox();
+        let (i, d) = self.tree.nearest_below(
+            |b| b.distance_to_box(&sb),
+            |i| segment_distance(s, &self.segments[i], eps).0,
+            limit,
+        )?;
+        Some((d, segment_distance(s, &self.segments[i], eps).1))
     }
 
     /// The point of the segments nearest to `p` and its distance (`None` when there are no

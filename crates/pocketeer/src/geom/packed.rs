@@ -156,26 +156,50 @@ impl PackedTree {
         bound: impl Fn(&Aabb) -> f64,
         exact: impl Fn(usize) -> f64,
     ) -> Option<(usize, f64)> {
+        self.nearest_below(bound, exact, f64::INFINITY)
+    }
+
+    /// [`PackedTree::nearest`] among the items whose `exact` is below `limit`: nothing whose
+    /// bound reaches the limit is looked into, so that a search for what lies near costs the
+    /// few boxes near, not every box that holds something farther. `None` when no item is
+    /// below the limit.
+    pub fn nearest_below(
+        &self,
+        bound: impl Fn(&Aabb) -> f64,
+        exact: impl Fn(usize) -> f64,
+        limit: f64,
+    ) -> Option<(usize, f64)> {
         let (pos, height) = self.root()?;
         let mut queue = BinaryHeap::new();
-        queue.push(Queued {
-            key: bound(&self.boxes[pos]),
-            pos,
-            height,
-        });
+        let key = bound(&self.boxes[pos]);
+        if key < limit {
+            queue.push(Queued { key, pos, height });
+        }
         while let Some(q) = queue.pop() {
             match q.height {
                 EXACT => return Some((self.ids[q.pos], q.key)),
-                0 => queue.push(Queued {
-                    key: exact(self.ids[q.pos]),
-                    height: EXACT,
-                    ..q
-                }),
-                height => queue.extend(self.children(q.pos, height).map(|c| Queued {
-                    key: bound(&self.boxes[c]),
-                    pos: c,
-                    height: height - 1,
-                })),
+                0 => {
+                    let key = exact(self.ids[q.pos]);
+                    if key < limit {
+                        queue.push(Queued {
+                            key,
+                            height: EXACT,
+                            ..q
+                        });
+                    }
+                }
+                height => {
+                    for c in self.children(q.pos, height) {
+                        let key = bound(&self.boxes[c]);
+                        if key < limit {
+                            queue.push(Queued {
+                                key,
+                                pos: c,
+                                height: height - 1,
+                            });
+                        }
+                    }
+                }
             }
         }
         None
