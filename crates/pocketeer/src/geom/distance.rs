@@ -72,11 +72,18 @@ pub(crate) fn in_sweep(sweep: f64, s: Vector, e: Vector, v: Vector) -> bool {
     }
     // Counter-clockwise from `from` to `to`.
     let (from, to) = if sweep > 0.0 { (s, e) } else { (e, s) };
-    if sweep.abs() <= PI {
-        from.cross(v) >= 0.0 && v.cross(to) >= 0.0
-    } else {
+    in_turn(from, to, v, sweep.abs() > PI)
+}
+
+/// True when the direction `v` lies within the turn counter-clockwise from direction `from`
+/// to direction `to`, boundaries included; `more_than_half` says whether that turn exceeds
+/// half a turn (the directions alone cannot tell a quarter turn from three quarters).
+pub(crate) fn in_turn(from: Vector, to: Vector, v: Vector, more_than_half: bool) -> bool {
+    if more_than_half {
         // The gap from `to` round to `from` is less than half a turn.
         !(to.cross(v) > 0.0 && v.cross(from) > 0.0)
+    } else {
+        from.cross(v) >= 0.0 && v.cross(to) >= 0.0
     }
 }
 

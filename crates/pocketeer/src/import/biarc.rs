@@ -333,6 +333,14 @@ struct Biarc {
 }
 
 impl Biarc {
+    /// A biarc of one piece (a line, or one of its arcs empty).
+    fn one(piece: Piece) -> Biarc {
+        Biarc {
+            list: [piece; 2],
+            count: 1,
+        }
+    }
+
     fn pieces(&self) -> &[Piece] {
         &self.list[..self.count]
     }
@@ -351,10 +359,7 @@ fn biarc_pieces(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Biarc> {
         // Parallel end tangents: a straight piece, or the symmetric S-curve.
         if v.cross(t0).abs() <= 1e-12 * vv.sqrt() && v.dot(t0) > 0.0 {
             let line = Piece::Line { start: p0, end: p1 };
-            return Some(Biarc {
-                list: [line; 2],
-                count: 1,
-            });
+            return Some(Biarc::one(line));
         }
         let vt = v.dot(t1);
         if vt.abs() < 1e-300 {
@@ -374,45 +379,16 @@ fn biarc_pieces(p0: Point, t0: Vector, p1: Point, t1: Vector) -> Option<Biarc> {
     );
     // The arcs keep p0, j and p1 as their ends (see `Arc::from_center`).
     let first = arc_from_tangent(p0, t0, j)?;
-    let second = reversed(arc_from_tangent(p1, -t1, j)?);
+    let second = arc_from_tangent(p1, -t1, j)?.reversed();
     Some(match (first.is_empty(), second.is_empty()) {
         (false, false) => Biarc {
             list: [first, second],
             count: 2,
         },
-        (true, false) => Biarc {
-            list: [second; 2],
-            count: 1,
-        },
-        (false, true) => Biarc {
-            list: [first; 2],
-            count: 1,
-        },
+        (true, false) => Biarc::one(second),
+        (false, true) => Biarc::one(first),
         (true, true) => return None,
     })
-}
-
-/// The piece run the other way.
-fn reversed(piece: Piece) -> Piece {
-    match piece {
-        Piece::Line { start, end } => Piece::Line {
-            start: end,
-            end: start,
-        },
-        Piece::Arc {
-            center,
-            radius,
-            start,
-            end,
-            ccw,
-        } => Piece::Arc {
-            center,
-            radius,
-            start: end,
-            end: start,
-            ccw: !ccw,
-        },
-    }
 }
 
 /// The arc (or line) that leaves `p` along unit tangent `t` and ends at `q`.

@@ -3,6 +3,7 @@
 //! kept). The questions the fit asks of it — where does a curve point project on it, how far
 //! is it, does the projection move forward along it — are answered with products and roots.
 
+use crate::geom::distance::in_turn;
 use crate::geom::{Arc, Line, Point, Segment, Vector};
 
 /// A line or an arc of a biarc being tried.
@@ -77,6 +78,30 @@ impl Piece {
         }
     }
 
+    /// The piece run the other way (an arc keeps the radius measured from its old start, now
+    /// its end: see [`Piece::segment`]).
+    pub fn reversed(&self) -> Piece {
+        match *self {
+            Piece::Line { start, end } => Piece::Line {
+                start: end,
+                end: start,
+            },
+            Piece::Arc {
+                center,
+                radius,
+                start,
+                end,
+                ccw,
+            } => Piece::Arc {
+                center,
+                radius,
+                start: end,
+                end: start,
+                ccw: !ccw,
+            },
+        }
+    }
+
     /// True when the piece has no length: its ends are one point (a biarc leaves such a piece
     /// out; an arc with equal ends would be a full circle).
     pub fn is_empty(&self) -> bool {
@@ -145,19 +170,12 @@ impl Piece {
 }
 
 /// True when direction `v` lies in the sector swept from direction `a` to direction `b`
-/// (counter-clockwise when `ccw`), boundaries included.
+/// (counter-clockwise when `ccw`), boundaries included. The arc's sweep is not stored: whether
+/// it exceeds half a turn comes from its end directions (equal ones make a full turn).
 fn in_sector(a: Vector, b: Vector, v: Vector, ccw: bool) -> bool {
-    let s = if ccw { 1.0 } else { -1.0 };
-    let after_start = s * a.cross(v) >= 0.0;
-    let before_end = s * v.cross(b) >= 0.0;
-    // Up to a half turn the sector is where both hold; beyond, it is all but the smaller
-    // sector from b on to a, where both fail.
-    let more_than_half = s * a.cross(b) < 0.0 || (a.cross(b) == 0.0 && a.dot(b) > 0.0);
-    if more_than_half {
-        after_start || before_end
-    } else {
-        after_start && before_end
-    }
+    let (from, to) = if ccw { (a, b) } else { (b, a) };
+    let more_than_half = from.cross(to) < 0.0 || (from.cross(to) == 0.0 && from.dot(to) > 0.0);
+    in_turn(from, to, v, more_than_half)
 }
 
 #[cfg(test)]
