@@ -124,7 +124,7 @@ impl Segment {
         let chord = (self.start() - o).cross(self.end() - o);
         match self {
             Segment::Line(_) => chord,
-            Segment::Arc(a) => chord + a.radius() * a.radius() * (a.sweep() - a.sweep().sin()),
+            Segment::Arc(a) => chord + a.radius() * a.radius() * sweep_less_sine(a.sweep()),
         }
     }
 
@@ -162,5 +162,59 @@ impl Segment {
                 a.sweep(),
             )),
         }
+    }
+}
+
+/// 1 / (2k + 3)! with the sign (−1)^k, for k = 0..=6: the series of θ − sin θ over θ³.
+const SERIES: [f64; 7] = [
+    1.0 / 6.0,
+    -1.0 / 120.0,
+    1.0 / 5040.0,
+    -1.0 / 362_880.0,
+    1.0 / 39_916_800.0,
+    -1.0 / 6_227_020_800.0,
+    1.0 / 1_307_674_368_000.0,
+];
+
+/// θ − sin θ, twice the area of the circular segment of a unit circle cut off by a sweep θ.
+/// Below half a radian by its series (θ³/3! − θ⁵/5! + … to θ¹⁵; the first term left out is
+/// below 1e-18 of the sum there): the difference of two nearly equal numbers loses the small
+/// segments of short arcs to rounding, and the sine was a tenth of the time of summing the
+/// area of a contour of arcs.
+fn sweep_less_sine(theta: f64) -> f64 {
+    if theta.abs() >= 0.5 {
+        return theta - theta.sin();
+    }
+    let t2 = theta * theta;
+    SERIES.iter().rev().fold(0.0, |sum, c| sum * t2 + c) * t2 * theta
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_series_meets_the_difference_where_it_takes_over() {
+        for theta in [0.5f64 - 1e-15, -0.5 + 1e-15] {
+            let direct = theta - theta.sin();
+            assert!((sweep_less_sine(theta) - direct).abs() <= 1e-15 * direct.abs());
+        }
+        assert_eq!(sweep_less_sine(0.0), 0.0);
+        // Far below rounding of the difference, the series keeps θ³/6.
+        let tiny = 1e-6;
+        assert!((sweep_less_sine(tiny) / (tiny * tiny * tiny / 6.0) - 1.0).abs() < 1e-12);
+        assert_eq!(sweep_less_sine(-0.3), -sweep_less_sine(0.3));
+    }
+
+    #[test]
+    fn a_circle_of_short_arcs_has_the_circles_area() {
+        let n = 10_000;
+        let step = std::f64::consts::TAU / n as f64;
+        let arcs: Vec<Segment> = (0..n)
+            .map(|k| Segment::Arc(Arc::new(Point::new(3.0, -2.0), 5.0, k as f64 * step, step)))
+            .collect();
+        let area = super::super::contour::signed_area(&arcs);
+        let exact = std::f64::consts::PI * 25.0;
+        assert!((area - exact).abs() < 1e-11 * exact, "{area} vs {exact}");
     }
 }

@@ -102,6 +102,29 @@ impl Piece {
         }
     }
 
+    /// The direction the piece runs in at its end (not of unit length).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Point, Vector};
+    /// use pocketeer::import::biarc_piece::Piece;
+    /// let (start, end) = (Point::new(1.0, 0.0), Point::new(0.0, 1.0));
+    /// let quarter = Piece::Arc { center: Point::ORIGIN, radius: 1.0, start, end, ccw: true };
+    /// assert_eq!(quarter.end_tangent(), Vector::new(-1.0, 0.0));
+    /// ```
+    pub fn end_tangent(&self) -> Vector {
+        match *self {
+            Piece::Line { start, end } => end - start,
+            Piece::Arc { center, end, ccw, .. } => {
+                let radial = end - center;
+                if ccw {
+                    Vector::new(-radial.y, radial.x)
+                } else {
+                    Vector::new(radial.y, -radial.x)
+                }
+            }
+        }
+    }
+
     /// True when the piece has no length: its ends are one point (a biarc leaves such a piece
     /// out; an arc with equal ends would be a full circle).
     pub fn is_empty(&self) -> bool {

@@ -147,7 +147,9 @@ impl SpanRun {
     pub fn runs(nurbs: &Nurbs) -> Vec<SpanRun> {
         let mut runs: Vec<SpanRun> = Vec::new();
         for (k, a, b) in nurbs.spans() {
-            let multiplicity = nurbs.knots.iter().filter(|&&u| u == a).count();
+            // The knots do not decrease (the reader refuses others), and knots[k + 1] > a:
+            // the copies of a end at k.
+            let multiplicity = nurbs.knots[..=k].iter().rev().take_while(|&&u| u == a).count();
             let smooth = multiplicity < nurbs.degree;
             let piece = SpanPolynomial::new(nurbs, k);
             match runs.last_mut() {
@@ -174,12 +176,19 @@ impl SpanRun {
 
     /// The span holding `t` (the first or last one beyond the domain).
     fn piece(&self, t: f64) -> &SpanPolynomial {
+        let holds =
+            |k: usize| self.starts[k] <= t && t < self.starts.get(k + 1).copied().unwrap_or(f64::INFINITY);
         let last = self.last.get();
-        let after = self.starts.get(last + 1).copied().unwrap_or(f64::INFINITY);
-        let k = if self.starts[last] <= t && t < after {
+        // The span of the last evaluation or its neighbour: a try's samples step along the
+        // curve in short steps, backwards only when they start over.
+        let k = if holds(last) {
             last
         } else {
-            let k = self.starts.partition_point(|&s| s <= t).saturating_sub(1);
+            let k = if last + 1 < self.starts.len() && holds(last + 1) {
+                last + 1
+            } else {
+                self.starts.partition_point(|&s| s <= t).saturating_sub(1)
+            };
             self.last.set(k);
             k
         };
