@@ -9,7 +9,9 @@
 //! loop is started.
 //!
 //! Each part of the clearing tree is cut after everything inside it (inside-out): its children
-//! first, then its clean-up paths, the loops around its islands, and its outer loop last. Once
+//! first, then its clean-up paths and the loops around its islands, nearest first, and its
+//! outer loop last, or first where it is the nearest (a ring's levels: the outer loop beside
+//! the one just cut, not the far side of the ring there and back). Once
 //! a part's children are cut, the tool may move at depth anywhere that stays inside the part
 //! (every point at least the part's distance from the walls): such a move crosses only the
 //! band the part's own loops are about to clear. Other moves retract to the safe height and
@@ -434,20 +436,32 @@ impl<'a> Linker<'a> {
 
     /// Cuts the paths of the part `n` itself, what goes before it being cut (`first` when
     /// nothing inside it is): clean-up paths and loops round islands nearest first, the outer
-    /// loop last.
+    /// loop last, or first when it is nearer than all of them. (Nearest first throughout
+    /// crosses a ring once a level too, but cutting the outer loop between the others changed
+    /// which loop takes the heavier cut where they come close: the 8-island rectangle's p95
+    /// engagement rose from 140° to 141°.)
     fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
         let part = &self.plan().parts[n];
         let mut items: Vec<Path> = part.cleanups.clone();
         items.extend(part.holes.iter().map(|h| loop_path(&h.segments)));
+        let outer = loop_path(&part.outer.segments);
+        let here = self.here();
+        let outer_first = !items.is_empty()
+            && (items.iter()).all(|p| walk::distance_to(&outer, here) < walk::distance_to(p, here));
+        if outer_first {
+            self.cut_path(part, &outer, first, reach);
+            first = false;
+        }
         while !items.is_empty() {
             let here = self.here();
-            // The outer loop goes last, at the wall of the part.
             let k = nearest(&items, |p| walk::distance_to(p, here));
             let item = items.swap_remove(k);
             self.cut_path(part, &item, first, reach);
             first = false;
         }
-        self.cut_path(part, &loop_path(&part.outer.segments), first, reach);
+        if !outer_first {
+            self.cut_path(part, &outer, first, reach);
+        }
     }
 
     /// Cuts one loop or clean-up path of `part`; `enter` when the tool comes to it through

@@ -2,7 +2,7 @@
 use super::*;
 use crate::clear::{plan_pocket, ClearParams};
 use crate::geom::Pocket;
-use crate::geom::{distance_from_segment, Contour};
+use crate::geom::{distance_from_segment, Arc, Contour};
 use crate::toolpath::Move;
 
 fn params(entry: Entry) -> LinkParams {
@@ -127,6 +127,62 @@ fn branches_around_a_bar_island_are_never_crossed_at_depth() {
     // The second branch is reached round the bar's end, at depth or over the top: never
     // through the bar.
     assert_no_gouge(&l.toolpath, &prepared);
+}
+
+/// Length of the feed moves at depth `z` that are not the plan's loops: links, helix
+/// run-outs and clean-up paths.
+fn feed_at_depth_beyond_loops(path: &Toolpath, plan: &ClearPlan, z: f64) -> f64 {
+    let mut at = path.start;
+    let mut total = 0.0;
+    for m in &path.moves {
+        if !matches!(m, Move::Rapid { .. }) && at.z == z && m.to().z == z {
+            total += m.length(at);
+        }
+        at = m.to();
+    }
+    let loops: f64 = (plan.parts.iter())
+        .flat_map(|p| p.loops())
+        .flat_map(|l| &l.segments)
+        .map(Segment::length)
+        .sum();
+    total - loops
+}
+
+#[test]
+fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
+    // Levels of a ring are parts of an outer loop and a loop round the hub, each inside the
+    // other. The tool leaves a part at one of its loops: the next part's loop beside it goes
+    // first, so that the ring is crossed once a level, not there and back (the outer loop
+    // always last crossed it twice: 9 levels, 360 mm of links for 178 mm of crossings).
+    let circle = |r: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::ORIGIN, r))]);
+    let pocket = Pocket {
+        boundary: circle(60.0),
+        islands: vec![circle(15.0).reversed()],
+    };
+    let (plan, prepared) = planned(&pocket, 2.4);
+    let l = link(
+        &[(&prepared, &plan)],
+        &params(Entry::Helix),
+        &Tolerance::default(),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    // Each level's crossing: from its loop round the hub to its outer loop.
+    let crossings: f64 = (plan.parts.iter())
+        .filter(|p| !p.holes.is_empty())
+        .map(|p| {
+            let (outer, hub) = (p.outer.bbox(), p.holes[0].bbox());
+            0.5 * ((outer.max.x - outer.min.x) - (hub.max.x - hub.min.x))
+        })
+        .sum();
+    assert!(crossings > 150.0, "{crossings}");
+    let links = feed_at_depth_beyond_loops(&l.toolpath, &plan, -2.0);
+    // Besides: a stepover from each part to the next, and the way from the helix.
+    let slack = 2.4 * plan.parts.len() as f64 + 12.0;
+    assert!(
+        links <= crossings + slack,
+        "{links} mm of links for {crossings} mm of crossings"
+    );
 }
 
 #[test]
