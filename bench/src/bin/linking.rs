@@ -243,9 +243,9 @@ fn main() {
         println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     } else {
         println!(
-            "| drawing | time s | time s, 0.5 s a retract | cutting mm | rapid mm | retracts | p95 engagement ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
+            "| drawing | time s | time s, 0.5 s a retract | cutting mm | rapid mm | retracts | p95 engagement ° | p95 touching stock ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
         );
-        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
     let (mut freecad_time, mut ours_beside_freecad) = (0.0, 0.0);
@@ -338,7 +338,7 @@ fn main() {
             continue;
         }
         println!(
-            "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.0} | {:.0} | {:.1} | {:.4} | {:.4} |",
+            "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.0} | {:.0} | {:.0} | {:.1} | {:.4} | {:.4} |",
             d.name,
             report.seconds,
             with,
@@ -346,6 +346,7 @@ fn main() {
             report.rapid_length,
             report.retracts,
             e.p95_deg,
+            e.p95_in_contact_deg,
             e.max_deg,
             e.above_150_percent,
             report.gouge,
@@ -361,7 +362,7 @@ fn main() {
             ours_beside_freecad / freecad_time
         );
     } else {
-        println!("| total | {total_time:.1} | {total_with:.1} | | | {total_retracts} | | | | | |");
+        println!("| total | {total_time:.1} | {total_with:.1} | | | {total_retracts} | | | | | | |");
     }
 }
 

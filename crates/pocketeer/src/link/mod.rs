@@ -529,6 +529,11 @@ impl<'a> Linker<'a> {
                     self.come_down_near(part, reach, &segments);
                 }
             }
+        } else if let Some(p) = self.hop_rather_than(q, reach) {
+            // A long way across at the cutting feed: over the top at rapid is faster.
+            self.retract();
+            self.descend_to(p, self.z);
+            self.path.line(Point3::at(q, self.z), Feed::Cut);
         } else {
             self.path.line(Point3::at(q, self.z), Feed::Cut);
         }
@@ -660,12 +665,41 @@ impl<'a> Linker<'a> {
         self.path.line(Point3::at(p, floor), Feed::Plunge);
     }
 
+    /// Where the tool, down at the pass depth, should come down to reach `q` inside `reach`
+    /// after going over the top, when that takes less time than the straight move at the
+    /// cutting feed (see [`Linker::landing`]); none when the straight move is faster.
+    fn hop_rather_than(&self, q: Point, reach: Reach) -> Option<Point> {
+        let t = &self.params.time;
+        let straight = t.feed_seconds(self.here().distance(q), t.feed);
+        // Not even the hop's fixed part can be saved: no need to look for a landing.
+        if self.hop_seconds(0.0, self.z) >= straight {
+            return None;
+        }
+        let p = self.landing(reach, q)?;
+        let hop = self.hop_seconds(self.here().distance(p), self.z) + t.feed_seconds(p.distance(q), t.feed);
+        (hop < straight).then_some(p)
+    }
+
     /// Back down after a retract to start `segments` of `part`: straight down onto the nearest
-    /// loop of the parts `reach` says are cut or onto the walk just cut, then across; a new entry when no such way stays
-    /// inside.
+    /// loop of the parts `reach` says are cut or onto the walk just cut, then across; a new
+    /// entry when no such way stays inside.
     fn come_down_near(&mut self, part: &Part, reach: Reach, segments: &[Segment]) {
-        let plan = self.plan();
         let q = segments[0].start();
+        match self.landing(reach, q) {
+            Some(p) => {
+                // That loop was cut at this pass's depth: down onto its floor.
+                self.descend_to(p, self.z);
+                self.path.line(Point3::at(q, self.z), Feed::Cut);
+            }
+            None => self.enter(part, segments),
+        }
+    }
+
+    /// The point nearest to `q` on the loops of the parts `reach` says are cut and on the walk
+    /// just cut (both cut at this pass's depth: the tool was down before going up) when the
+    /// straight move from it to `q` stays inside `reach`.
+    fn landing(&self, reach: Reach, q: Point) -> Option<Point> {
+        let plan = self.plan();
         let mut best: Option<(Point, f64)> = None;
         // The loops of the parts cut, and the walk just cut (the tool was down at this pass's
         // depth before the retract, so that walk is at it too).
@@ -680,14 +714,8 @@ impl<'a> Linker<'a> {
                 best = Some((p, d));
             }
         }
-        match best {
-            Some((p, _)) if self.stays_inside(p, q, reach.distance) => {
-                // That loop was cut at this pass's depth: down onto its floor.
-                self.descend_to(p, self.z);
-                self.path.line(Point3::at(q, self.z), Feed::Cut);
-            }
-            _ => self.enter(part, segments),
-        }
+        best.map(|(p, _)| p)
+            .filter(|&p| self.stays_inside(p, q, reach.distance))
     }
 
     /// A helix in the part `part` near the start of `segments`; when the part is too small,

@@ -186,6 +186,50 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
 }
 
 #[test]
+fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
+    // Two islands 60 mm apart: their loops at the walls' level are 46 mm apart, 2.8 s at the
+    // cutting feed against about 1.3 s up, across at rapid, down and a retract's half second.
+    let circle = |x: f64, r: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, 20.0), r))]);
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 120.0, 40.0),
+        islands: vec![circle(30.0, 4.0).reversed(), circle(90.0, 4.0).reversed()],
+    };
+    let (plan, prepared) = planned(&pocket, 2.4);
+    let params = params(Entry::Helix);
+    let l = link(&[(&prepared, &plan)], &params, &Tolerance::default()).unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    let on_a_path = |p: Point| {
+        (plan.parts.iter())
+            .flat_map(|q| {
+                q.loops()
+                    .flat_map(|c| &c.segments)
+                    .chain(q.cleanups.iter().flat_map(|c| &c.segments))
+            })
+            .any(|s| distance_from_segment(s, p) < 1e-6)
+    };
+    // The longest straight link at depth worth feeding: where its time reaches a hop's.
+    let t = &params.time;
+    let hop = |across: f64| t.hop_seconds(7.0, across, 6.0) + t.feed_seconds(1.0, t.plunge_feed);
+    let longest = (1..200)
+        .map(f64::from)
+        .find(|&d| t.feed_seconds(d, t.feed) > hop(d))
+        .unwrap();
+    let mut at = l.toolpath.start;
+    for m in &l.toolpath.moves {
+        if let Move::Line { to, feed: Feed::Cut } = *m {
+            let link = !(on_a_path(at.xy()) && on_a_path(to.xy()) && on_a_path(at.xy().midpoint(to.xy())));
+            if link && at.z == -2.0 && to.z == -2.0 {
+                assert!(
+                    at.distance(to) <= longest + 3.0,
+                    "{at:?} to {to:?}: longer than {longest} mm"
+                );
+            }
+        }
+        at = m.to();
+    }
+}
+
+#[test]
 fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
     // A 3 x 3 grid of 8 mm holes at a 20 mm pitch: the levels split into a branch in every cell
     // between four holes, each a leaf to enter. Neighbouring cells see each other through the

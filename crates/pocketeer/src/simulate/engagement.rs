@@ -47,6 +47,10 @@ pub struct Engagement {
     pub max_at: Option<Place>,
     /// The engagement that 95 % of the cutting length stays at or below, degrees.
     pub p95_deg: f64,
+    /// The same over the length where the tool touches stock (more than 0°): a link fed
+    /// through cleared stock lowers [`Engagement::p95_deg`] without easing any cut, and one
+    /// replaced by a rapid over the top raises it.
+    pub p95_in_contact_deg: f64,
     /// Share of the cutting length with more than 90°, percent.
     pub above_90_percent: f64,
     /// Share of the cutting length with more than 150°, percent.
@@ -173,14 +177,9 @@ fn summarize(
     }
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
     let total: f64 = samples.iter().map(|s| s.1).sum();
-    let mut acc = 0.0;
-    let p95 = samples
-        .iter()
-        .find(|s| {
-            acc += s.1;
-            acc >= 0.95 * total
-        })
-        .map_or(0.0, |s| s.0);
+    let p95 = percentile(&samples, 0.95);
+    let in_contact = samples.partition_point(|s| s.0 <= 0.0);
+    let p95_in_contact = percentile(&samples[in_contact..], 0.95);
     let percent = |x: f64| if total > 0.0 { 100.0 * x / total } else { 0.0 };
     Engagement {
         angle_step_deg: ANGLE_STEP_DEG,
@@ -189,10 +188,25 @@ fn summarize(
         max_deg: max.0,
         max_at: max.1,
         p95_deg: p95,
+        p95_in_contact_deg: p95_in_contact,
         above_90_percent: percent(above_90),
         above_150_percent: percent(above_150),
         histogram,
     }
+}
+
+/// The engagement that the share `q` of the samples' length (sorted by engagement) stays at
+/// or below; 0 for no samples.
+fn percentile(sorted: &[(f64, f64)], q: f64) -> f64 {
+    let total: f64 = sorted.iter().map(|s| s.1).sum();
+    let mut acc = 0.0;
+    sorted
+        .iter()
+        .find(|s| {
+            acc += s.1;
+            acc >= q * total
+        })
+        .map_or(0.0, |s| s.0)
 }
 
 #[cfg(test)]
@@ -269,5 +283,24 @@ mod tests {
         assert_eq!(engagement_at(&moves, &history, 2, 0.5, r), 0.0);
         let deg = engagement_at(&moves, &history, 4, 0.5, r);
         assert!((deg - 180.0).abs() <= ANGLE_STEP_DEG, "{deg}");
+    }
+
+    #[test]
+    fn the_p95_in_contact_leaves_out_the_length_that_meets_no_stock() {
+        // A slot 40 mm long, then 50 times back and forth along its middle through nothing but
+        // air: 1000 of 1040 mm meet no stock, so 95 % of the length stays at 0°; the slot is
+        // still a slot.
+        let r = 2.0;
+        let mut moves = vec![feed(1, (0.0, 0.0, -1.0), (40.0, 0.0, -1.0))];
+        moves.push(feed(2, (40.0, 0.0, -1.0), (30.0, 0.0, -1.0)));
+        for k in 0..50 {
+            let (a, b) = if k % 2 == 0 { (30.0, 10.0) } else { (10.0, 30.0) };
+            moves.push(feed(k + 3, (a, 0.0, -1.0), (b, 0.0, -1.0)));
+        }
+        let e = engagement(&moves, &CutHistory::new(&moves, r), r);
+        assert!((e.length - 1050.0).abs() < 1e-9);
+        assert_eq!(e.p95_deg, 0.0, "{e:?}");
+        assert!((e.p95_in_contact_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{e:?}");
+        assert!(e.histogram[0] >= 1009.0, "{e:?}");
     }
 }
