@@ -442,32 +442,80 @@ impl<'a> Linker<'a> {
     /// engagement rose from 140° to 141°.)
     fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
         let part = &self.plan().parts[n];
-        let mut items: Vec<Path> = part.cleanups.clone();
-        items.extend(part.holes.iter().map(|h| loop_path(&h.segments)));
-        let outer = loop_path(&part.outer.segments);
+        // The part's loops, each with the clean-up paths cut on the way round it.
+        let outer = (loop_path(&part.outer.segments), Vec::new());
+        let mut items: Vec<(Path, Vec<Path>)> = (part.holes.iter())
+            .map(|h| (loop_path(&h.segments), Vec::new()))
+            .collect();
+        let mut loose = Vec::new();
+        let mut outer = outer;
+        for c in &part.cleanups {
+            match self.host_of(c, &outer.0, &items) {
+                Some(0) => outer.1.push(c.clone()),
+                Some(k) => items[k - 1].1.push(c.clone()),
+                None => loose.push((c.clone(), Vec::new())),
+            }
+        }
+        items.extend(loose);
         let here = self.here();
         let outer_first = !items.is_empty()
-            && (items.iter()).all(|p| walk::distance_to(&outer, here) < walk::distance_to(p, here));
+            && (items.iter()).all(|p| walk::distance_to(&outer.0, here) < walk::distance_to(&p.0, here));
         if outer_first {
-            self.cut_path(part, &outer, first, reach);
+            self.cut_path_with(part, &outer.0, &outer.1, first, reach);
             first = false;
         }
         while !items.is_empty() {
             let here = self.here();
-            let k = nearest(&items, |p| walk::distance_to(p, here));
-            let item = items.swap_remove(k);
-            self.cut_path(part, &item, first, reach);
+            let k = nearest(&items, |p| walk::distance_to(&p.0, here));
+            let (item, on_the_way) = items.swap_remove(k);
+            self.cut_path_with(part, &item, &on_the_way, first, reach);
             first = false;
         }
         if !outer_first {
-            self.cut_path(part, &outer, first, reach);
+            self.cut_path_with(part, &outer.0, &outer.1, first, reach);
         }
+    }
+
+    /// The loop (0: `outer`, k: the k-th of `holes`) that cuts the clean-up path `c` on its
+    /// way round (see [`Linker::excursions`]): the nearest whose tool disc, at its point nearest
+    /// to an end of `c`, holds both ends, with nothing in the way to either, so that the tool
+    /// goes out and back straight; none when no loop passes so near (a longer path is cut
+    /// from where the tool is, as its own item: going back along it doubled the clean-up on
+    /// the 90 % rectangle; allowed for paths up to a tool radius long, it made the 70 % one
+    /// 3.6 s faster and the 90 % one 5.8 s slower), and for the finishing loop (it has leads).
+    fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Path>)]) -> Option<usize> {
+        let r = self.plan().tool_radius;
+        if c.closed || self.plan().allowance > 0.0 {
+            return None;
+        }
+        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+        let loops = std::iter::once(outer).chain(holes.iter().map(|h| &h.0));
+        let mut best: Option<(usize, f64)> = None;
+        for (k, l) in loops.enumerate() {
+            for end in ends {
+                let p = nearest_point(&l.segments, end);
+                let d = p.distance(end);
+                let both = ends
+                    .iter()
+                    .all(|&e| p.distance(e) <= r && self.stays_inside(p, e, r));
+                if d <= r && best.is_none_or(|(_, b)| d < b) && both {
+                    best = Some((k, d));
+                }
+            }
+        }
+        best.map(|(k, _)| k)
     }
 
     /// Cuts one loop or clean-up path of `part`; `enter` when the tool comes to it through
     /// uncut stock (the first path of a part with nothing inside it), else reached at depth
     /// within `reach`.
     fn cut_path(&mut self, part: &Part, item: &Path, enter: bool, reach: Reach) {
+        self.cut_path_with(part, item, &[], enter, reach);
+    }
+
+    /// [`Linker::cut_path`], cutting the clean-up paths `on_the_way` as excursions from the
+    /// walk of the loop `item` (see [`Linker::excursions`]).
+    fn cut_path_with(&mut self, part: &Part, item: &Path, on_the_way: &[Path], enter: bool, reach: Reach) {
         self.progress.advance(1);
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
@@ -537,9 +585,72 @@ impl<'a> Linker<'a> {
         } else {
             self.path.line(Point3::at(q, self.z), Feed::Cut);
         }
-        walk::follow(&mut self.path, &segments, self.z);
+        if on_the_way.is_empty() || leads {
+            walk::follow(&mut self.path, &segments, self.z);
+        } else {
+            self.excursions(&segments, on_the_way);
+        }
         self.down = true;
         self.last = (segments, item.closed);
+    }
+
+    /// Follows the walk `segments` of a loop, cutting each of `cleanups` on the way: where the
+    /// walk comes nearest to the clean-up path's nearer end, out to that end (inside the tool's
+    /// disc there, cut at that moment), along the path, and back to the walk straight from its
+    /// far end where nothing is in the way, else back along it. A clean-up path lies between a
+    /// loop and the loops inside it, all of them cut when the walk passes: it is reached where
+    /// the tool is, instead of by a link across the part (on the 8-island rectangle at 70 %
+    /// stepover, 112 clean-up paths of 231 mm took 775 mm of links).
+    fn excursions(&mut self, segments: &[Segment], cleanups: &[Path]) {
+        let r = self.plan().tool_radius;
+        let eps = self.tol.eps;
+        // Where each excursion leaves the walk: segment index, parameter, the path oriented to
+        // start at its nearer end.
+        let mut stops: Vec<(usize, f64, Vec<Segment>)> = cleanups
+            .iter()
+            .map(|c| {
+                let (start, end) = (c.segments[0].start(), c.segments[c.segments.len() - 1].end());
+                let (k, t, d_start) = nearest_on(segments, start);
+                let (k2, t2, d_end) = nearest_on(segments, end);
+                if d_end < d_start {
+                    (k2, t2, c.segments.iter().rev().map(Segment::reversed).collect())
+                } else {
+                    (k, t, c.segments.clone())
+                }
+            })
+            .collect();
+        stops.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        let mut stops = stops.into_iter().peekable();
+        for (k, s) in segments.iter().enumerate() {
+            let mut rest = *s;
+            let mut done = 0.0;
+            while let Some((_, t, path)) = stops.next_if(|stop| stop.0 == k) {
+                // `rest` runs over [done, 1] of the segment.
+                let local = if done < 1.0 {
+                    ((t - done) / (1.0 - done)).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let (head, tail) = rest.split_at(local);
+                if head.length() > eps {
+                    walk::emit(&mut self.path, &head, self.z, Feed::Cut);
+                }
+                (rest, done) = (tail, t.max(done));
+                self.progress.advance(1);
+                let p = self.here();
+                self.path.line(Point3::at(path[0].start(), self.z), Feed::Cut);
+                walk::follow(&mut self.path, &path, self.z);
+                let far = self.here();
+                if !(far.distance(p) <= r && self.stays_inside(far, p, r)) {
+                    let back: Vec<Segment> = path.iter().rev().map(Segment::reversed).collect();
+                    walk::follow(&mut self.path, &back, self.z);
+                }
+                self.path.line(Point3::at(p, self.z), Feed::Cut);
+            }
+            if rest.length() > eps || done == 0.0 {
+                walk::emit(&mut self.path, &rest, self.z, Feed::Cut);
+            }
+        }
     }
 
     /// The way at depth to `item` of `part` (whose inside is cut) along the walk just cut and
@@ -832,6 +943,25 @@ struct Reach<'r> {
 /// are at `d` only up to the offset's accuracy and rounding.
 fn clearance_slack(d: f64, tol: &Tolerance) -> f64 {
     1e-6 * d.max(1.0) + tol.rounding()
+}
+
+/// The point of `segments` nearest to `p`.
+fn nearest_point(segments: &[Segment], p: Point) -> Point {
+    let (k, t, _) = nearest_on(segments, p);
+    segments[k].point_at(t)
+}
+
+/// Where `p` is nearest to `segments`: the segment's index, the parameter on it and the
+/// distance.
+fn nearest_on(segments: &[Segment], p: Point) -> (usize, f64, f64) {
+    let mut best = (0, 0.0, f64::INFINITY);
+    for (k, s) in segments.iter().enumerate() {
+        let d = crate::geom::distance_from_segment(s, p);
+        if d < best.2 {
+            best = (k, crate::geom::closest_param(s, p), d);
+        }
+    }
+    best
 }
 
 fn loop_path(segments: &[Segment]) -> Path {

@@ -230,6 +230,63 @@ fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
 }
 
 #[test]
+fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
+    // At 70 % stepover the levels leave residues between the loops round two islands and the
+    // loops inside them: clean-up paths. Each one whose ends both lie within the tool's disc
+    // at the nearest point of a loop of its part is cut from that loop, out and back, not
+    // reached by a link of its own.
+    let circle = |x: f64, r: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, 30.0), r))]);
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 120.0, 60.0),
+        islands: vec![circle(35.0, 4.0).reversed(), circle(85.0, 4.0).reversed()],
+    };
+    let (plan, prepared) = planned(&pocket, 4.2);
+    let l = link(
+        &[(&prepared, &plan)],
+        &params(Entry::Helix),
+        &Tolerance::default(),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    let on_loop = |part: &Part, p: Point| {
+        part.loops()
+            .flat_map(|c| &c.segments)
+            .any(|s| distance_from_segment(s, p) < 1e-6)
+    };
+    let mut beside = 0;
+    for part in &plan.parts {
+        for c in &part.cleanups {
+            let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+            let near = part.loops().any(|l| {
+                ends.iter().any(|&e| {
+                    let s = l
+                        .segments
+                        .iter()
+                        .min_by(|a, b| distance_from_segment(a, e).total_cmp(&distance_from_segment(b, e)));
+                    let p = crate::geom::closest_point(s.unwrap(), e);
+                    ends.iter().all(|&f| p.distance(f) <= 3.0 - 1e-6)
+                })
+            });
+            if !near {
+                continue;
+            }
+            beside += 1;
+            // The move onto the path comes from a loop of its part.
+            let mut at = l.toolpath.start;
+            let from_loop = l.toolpath.moves.iter().any(|m| {
+                let hit = matches!(m, Move::Line { feed: Feed::Cut, .. })
+                    && ends.iter().any(|&e| m.to().xy().distance(e) < 1e-9)
+                    && on_loop(part, at.xy());
+                at = m.to();
+                hit
+            });
+            assert!(from_loop, "clean-up path from {:?} to {:?}", ends[0], ends[1]);
+        }
+    }
+    assert!(beside >= 4, "{beside} clean-up paths beside a loop");
+}
+
+#[test]
 fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
     // A 3 x 3 grid of 8 mm holes at a 20 mm pitch: the levels split into a branch in every cell
     // between four holes, each a leaf to enter. Neighbouring cells see each other through the
