@@ -143,12 +143,13 @@ pub fn run(args: &CheckArgs) -> Result<Verdict, Failure> {
     } else {
         tool_radii(&program, &args.tools, &name.to_string())?
     };
-    let report = pocketeer::simulate::check_program_tools(
+    let report = pocketeer::simulate::check_program_tools_with(
         &analysis.nesting.pockets,
         &program,
         &radii,
         &params,
         &analysis.tolerance,
+        &spinner,
     )
     .map_err(|e| Failure(format!("{}: {e}", args.drawing.file.display())))?;
     drop(spinner);

@@ -810,9 +810,15 @@ fn self_check(
     };
     let read = pocketeer::simulate::read_program(program)
         .map_err(|e| Failure(format!("the program written does not read back: {e}")))?;
-    let report =
-        pocketeer::simulate::check_program(&analysis.nesting.pockets, &read, &params, &analysis.tolerance)
-            .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
+    let report = pocketeer::simulate::check_program_tools_with(
+        &analysis.nesting.pockets,
+        &read,
+        &[],
+        &params,
+        &analysis.tolerance,
+        spinner,
+    )
+    .map_err(|e| Failure(format!("{name}: cannot check the program: {e}")))?;
     spinner.bar_suspend(|| eprint!("{}", crate::check::to_text(&report, &params)));
     if report.passed {
         return Ok(report);

@@ -273,3 +273,37 @@ fn a_wall_pass_0_011_too_close_fails_and_0_005_passes_the_gouge_tolerance() {
     assert_eq!(near.plunges.len(), 1);
     assert_eq!(near.plunges[0].line, 4);
 }
+
+#[test]
+fn the_check_reports_a_step_for_each_move_and_each_cutting_move_measured() {
+    let pocket = pocket();
+    let program = read_program(&our_program(&pocket, 2.4)).expect("reads");
+    let params = CheckParams {
+        tool_radius: 3.0,
+        depth: Some(2.0),
+        gouge_tolerance: 0.01,
+        leftover_tolerance: 0.05,
+        rapid_rate: pocketeer::simulate::check::RAPID_RATE,
+        per_retract: pocketeer::machining_time::DEFAULT_RETRACT_SECONDS,
+    };
+    let progress = pocketeer::progress::Recorded::default();
+    let report = pocketeer::simulate::check_program_tools_with(
+        std::slice::from_ref(&pocket),
+        &program,
+        &[],
+        &params,
+        &Tolerance::default(),
+        &progress,
+    )
+    .unwrap();
+    assert!(report.passed);
+    let moves = program.moves.len() as u64;
+    let stages = progress.stages();
+    assert_eq!(stages.len(), 3, "{stages:?}");
+    assert_eq!(stages[0], ("replaying the moves".to_owned(), Some(moves)));
+    assert_eq!(stages[1].0, "measuring the tool's engagement");
+    let cutting = stages[1].1.unwrap();
+    assert!(cutting > 0 && cutting < moves, "{cutting} of {moves}");
+    assert_eq!(stages[2], ("sweeping the area cut".to_owned(), None));
+    assert_eq!(progress.steps(), moves + cutting);
+}

@@ -504,24 +504,6 @@ fn climb_keeps_the_wall_and_the_islands_on_the_tools_right() {
     }
 }
 
-/// Records the stages and steps a run reports.
-#[derive(Default)]
-struct Recorded {
-    stages: std::sync::Mutex<Vec<(String, Option<u64>)>>,
-    steps: std::sync::atomic::AtomicU64,
-}
-
-impl crate::progress::Progress for Recorded {
-    fn stage(&self, name: &str, steps: Option<u64>) {
-        if let Ok(mut s) = self.stages.lock() {
-            s.push((name.to_owned(), steps));
-        }
-    }
-    fn advance(&self, n: u64) {
-        self.steps.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
-    }
-}
-
 #[test]
 fn linking_reports_a_step_for_each_loop_and_clean_up_path_at_each_pass() {
     // Islands and a wide stepover: loops round islands and clean-up paths besides the outer
@@ -544,17 +526,13 @@ fn linking_reports_a_step_for_each_loop_and_clean_up_path_at_each_pass() {
         depth: 6.0,
         ..params(Entry::Helix)
     };
-    let progress = Recorded::default();
+    let progress = crate::progress::Recorded::default();
     let l = link_with(&[(&prepared, &plan)], &p, &Tolerance::default(), &progress).unwrap();
     assert_no_gouge(&l.toolpath, &prepared);
     let loops = plan.loop_count();
-    let stages = progress.stages.lock().unwrap().clone();
     assert_eq!(
-        stages,
+        progress.stages(),
         vec![(format!("linking {loops} loops"), Some(3 * loops as u64))]
     );
-    assert_eq!(
-        progress.steps.load(std::sync::atomic::Ordering::Relaxed),
-        3 * loops as u64
-    );
+    assert_eq!(progress.steps(), 3 * loops as u64);
 }

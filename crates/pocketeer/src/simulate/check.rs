@@ -150,6 +150,19 @@ pub fn check_program_tools(
     params: &CheckParams,
     tol: &Tolerance,
 ) -> Result<CheckReport, OffsetError> {
+    check_program_tools_with(pockets, program, radii, params, tol, &crate::progress::Silent)
+}
+
+/// [`check_program_tools`], telling `progress` of its stages: the moves replayed (a step a
+/// move), the engagement measured (a step a cutting move) and the area swept.
+pub fn check_program_tools_with(
+    pockets: &[Pocket],
+    program: &Program,
+    radii: &[(usize, f64)],
+    params: &CheckParams,
+    tol: &Tolerance,
+    progress: &dyn crate::progress::Progress,
+) -> Result<CheckReport, OffsetError> {
     let default = [(0, params.tool_radius)];
     let radii = if radii.is_empty() { &default[..] } else { radii };
     let moves = &program.moves;
@@ -169,7 +182,9 @@ pub fn check_program_tools(
     let mut report = CheckReport::empty(final_depth, deepest, program.dwell);
     let mut gouges: Vec<(f64, Option<Place>)> = vec![(0.0, None); pockets.len()];
     let history = super::history::CutHistory::with_radii(moves, (0..moves.len()).map(radius_at).collect());
+    progress.stage("replaying the moves", Some(moves.len() as u64));
     for (k, m) in moves.iter().enumerate() {
+        progress.advance(1);
         let r = radius_at(k);
         let place = |p: Point| Place {
             x: p.x,
@@ -200,9 +215,10 @@ pub fn check_program_tools(
     }
     if radii.len() <= 1 {
         let r = radius_at(0);
-        report.engagement = super::engagement::engagement(moves, &history, r);
+        report.engagement = super::engagement::engagement_with(moves, &history, r, progress);
         report.wall_sides = super::side::material_sides(moves, &|p| walls.of_pocket_at(p), final_depth, r);
     }
+    progress.stage("sweeping the area cut", None);
     // The area swept: each tool's moves with its radius.
     let mut bounds: Vec<usize> = radii.iter().map(|t| t.0.min(moves.len())).collect();
     bounds[0] = 0;

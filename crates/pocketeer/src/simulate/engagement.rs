@@ -61,7 +61,18 @@ pub struct Engagement {
 
 /// The engagement along `moves` for a tool of radius `r` (see the module's documentation).
 pub fn engagement(moves: &[ProgramMove], history: &CutHistory, r: f64) -> Engagement {
+    engagement_with(moves, history, r, &crate::progress::Silent)
+}
+
+/// [`engagement`], telling `progress` of each cutting move measured.
+pub fn engagement_with(
+    moves: &[ProgramMove],
+    history: &CutHistory,
+    r: f64,
+    progress: &dyn crate::progress::Progress,
+) -> Engagement {
     let cutting: Vec<usize> = (0..moves.len()).filter(|&k| is_cutting(&moves[k])).collect();
+    progress.stage("measuring the tool's engagement", Some(cutting.len() as u64));
     let length: f64 = cutting.iter().map(|&k| moves[k].length()).sum();
     let mut spacing = SPACING_PER_RADIUS * r;
     if length / spacing > MAX_SAMPLES as f64 {
@@ -71,6 +82,7 @@ pub fn engagement(moves: &[ProgramMove], history: &CutHistory, r: f64) -> Engage
     let mut samples: Vec<(f64, f64)> = Vec::new();
     let mut max: (f64, Option<Place>) = (0.0, None);
     for &k in &cutting {
+        progress.advance(1);
         let m = &moves[k];
         let len = m.length();
         let n = ((len / spacing).ceil() as usize).max(2);

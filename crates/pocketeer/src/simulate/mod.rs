@@ -18,7 +18,9 @@ pub(crate) mod polygon;
 mod side;
 pub mod zmap;
 
-pub use check::{check_program, check_program_tools, CheckParams, CheckReport, PocketCheck};
+pub use check::{
+    check_program, check_program_tools, check_program_tools_with, CheckParams, CheckReport, PocketCheck,
+};
 pub use engagement::Engagement;
 pub use gcode::{read_program, GcodeError, Program};
 pub use side::{Sides, WALL_SLACK};
