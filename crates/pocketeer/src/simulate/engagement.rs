@@ -25,8 +25,9 @@ pub const ANGLE_STEP_DEG: f64 = 1.0;
 /// Largest distance between samples along a move, as a share of the tool radius.
 pub const SPACING_PER_RADIUS: f64 = 0.125;
 
-/// Most samples along the program: past this the spacing widens (and the report says so), so
-/// that a check of a huge program stays a matter of seconds.
+/// Most samples along the program: past this the spacing widens (and the report says so), and
+/// where two samples a move would exceed it, the samples go at that spacing along the whole
+/// program rather than per move.
 pub const MAX_SAMPLES: usize = 400_000;
 
 /// Width of the bands of [`Engagement::histogram`], degrees.
@@ -41,6 +42,8 @@ pub struct Engagement {
     pub spacing: f64,
     /// Length of the cutting moves measured (one height, below Z=0), mm.
     pub length: f64,
+    /// How many places along them were measured.
+    pub samples: usize,
     /// Largest engagement, degrees.
     pub max_deg: f64,
     /// Where it is.
@@ -71,13 +74,34 @@ pub fn engagement_with(
     r: f64,
     progress: &dyn crate::progress::Progress,
 ) -> Engagement {
+    sampled(moves, history, r, MAX_SAMPLES, progress)
+}
+
+/// [`engagement_with`] with at most about `budget` samples.
+fn sampled(
+    moves: &[ProgramMove],
+    history: &CutHistory,
+    r: f64,
+    budget: usize,
+    progress: &dyn crate::progress::Progress,
+) -> Engagement {
     let cutting: Vec<usize> = (0..moves.len()).filter(|&k| is_cutting(&moves[k])).collect();
     progress.stage("measuring the tool's engagement", Some(cutting.len() as u64));
     let length: f64 = cutting.iter().map(|&k| moves[k].length()).sum();
     let mut spacing = SPACING_PER_RADIUS * r;
-    if length / spacing > MAX_SAMPLES as f64 {
-        spacing = length / MAX_SAMPLES as f64;
+    if length / spacing > budget as f64 {
+        spacing = length / budget as f64;
     }
+    let per_move = |len: f64| ((len / spacing).ceil() as usize).max(2);
+    // At least two samples a move, unless that breaks the budget: a program of a million
+    // moves micrometres long (a finely divided wall) would take two million. Then the samples
+    // go at the spacing along the whole program, each standing for the length since the last.
+    let by_move = cutting
+        .iter()
+        .map(|&k| per_move(moves[k].length()))
+        .sum::<usize>()
+        <= budget;
+    let mut since_last = 0.0;
     // (engagement in degrees, length it stands for)
     let mut samples: Vec<(f64, f64)> = Vec::new();
     let mut max: (f64, Option<Place>) = (0.0, None);
@@ -85,11 +109,33 @@ pub fn engagement_with(
         progress.advance(1);
         let m = &moves[k];
         let len = m.length();
-        let n = ((len / spacing).ceil() as usize).max(2);
-        for j in 1..=n {
-            let t = j as f64 / n as f64;
+        let (ts, weight): (Vec<f64>, Vec<f64>) = if by_move {
+            let n = per_move(len);
+            (1..=n).map(|j| (j as f64 / n as f64, len / n as f64)).unzip()
+        } else {
+            let mut at = Vec::new();
+            // The first sample where the length since the last reaches the spacing, then
+            // every spacing; what is left over counts towards the next move's.
+            let mut along = spacing - since_last;
+            let mut from = 0.0;
+            while along <= len {
+                at.push((
+                    along / len,
+                    along - from + if from == 0.0 { since_last } else { 0.0 },
+                ));
+                from = along;
+                along += spacing;
+            }
+            since_last = if at.is_empty() {
+                since_last + len
+            } else {
+                len - from
+            };
+            at.into_iter().unzip()
+        };
+        for (t, w) in ts.into_iter().zip(weight) {
             let deg = engagement_at(moves, history, k, t, r);
-            samples.push((deg, len / n as f64));
+            samples.push((deg, w));
             if deg > max.0 || max.1.is_none() {
                 let c = m.point_at(t);
                 max = (
@@ -197,6 +243,7 @@ fn summarize(
         angle_step_deg: ANGLE_STEP_DEG,
         spacing,
         length,
+        samples: samples.len(),
         max_deg: max.0,
         max_at: max.1,
         p95_deg: p95,
@@ -295,6 +342,35 @@ mod tests {
         assert_eq!(engagement_at(&moves, &history, 2, 0.5, r), 0.0);
         let deg = engagement_at(&moves, &history, 4, 0.5, r);
         assert!((deg - 180.0).abs() <= ANGLE_STEP_DEG, "{deg}");
+    }
+
+    #[test]
+    fn a_slot_of_many_tiny_moves_is_sampled_within_the_budget_and_is_still_a_slot() {
+        // 1000 moves of 0.01 mm: two samples a move would be 2000, the budget is 100. The
+        // samples then go every eighth of the radius (0.25 mm) along the program, 40 in all,
+        // each standing for 0.25 mm.
+        let r = 2.0;
+        let moves: Vec<ProgramMove> = (0..1000)
+            .map(|k| {
+                feed(
+                    k + 1,
+                    (0.01 * k as f64, 0.0, -1.0),
+                    (0.01 * (k + 1) as f64, 0.0, -1.0),
+                )
+            })
+            .collect();
+        let history = CutHistory::new(&moves, r);
+        let e = sampled(&moves, &history, r, 100, &crate::progress::Silent);
+        assert!((e.spacing - 0.25).abs() < 1e-12, "{e:?}");
+        assert_eq!(e.samples, 40);
+        let weighed: f64 = e.histogram.iter().sum();
+        assert!((10.0 - 0.25 - 1e-9..=10.0 + 1e-9).contains(&weighed), "{weighed}");
+        assert!((e.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{e:?}");
+        // Within the budget, every move is sampled as before: twice.
+        let full = sampled(&moves, &history, r, 2000, &crate::progress::Silent);
+        assert_eq!(full.samples, 2000);
+        assert!((full.histogram.iter().sum::<f64>() - 10.0).abs() < 1e-9);
+        assert!((full.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{full:?}");
     }
 
     #[test]
