@@ -245,53 +245,50 @@ fn elements_of(
         .into_iter()
         .filter(|p| layer_of[p.source].is_some())
         .collect();
-    let (segments, counts) = curves_to_segments(&kept);
-    let mut elements = Vec::with_capacity(segments.len());
-    let mut extent = Aabb::EMPTY;
-    let mut segments = segments.into_iter();
-    for (p, count) in kept.iter().zip(counts) {
-        let layer = layer_of[p.source].unwrap_or(0);
-        for s in segments.by_ref().take(count) {
-            extent = extent.union(&s.bbox());
-            elements.push(Element {
-                segment: s,
-                layer,
-                source: p.source,
-                closed_group: p.closed_group,
-            });
-        }
-    }
+    let (elements, extent) = curves_to_elements(&kept, &layer_of);
     (elements, sources, extent)
 }
 
-/// The placed curves as lines and arcs, in order, and how many each gave. Fitting arcs to
-/// splines and ellipses is most of the time a drawing of traced art takes to read, and each
-/// curve is fitted alone: the curves are shared out among the cores in runs, each run writing
-/// one list (a list per curve would be an allocation per line of a long polyline).
-fn curves_to_segments(kept: &[expand::Placed]) -> (Vec<Segment>, Vec<usize>) {
+/// The placed curves as elements (lines and arcs with their layer and source), in order, and
+/// the box round them. Fitting arcs to splines and ellipses is most of the time a drawing of
+/// traced art takes to read, and each curve is fitted alone: the curves are shared out among
+/// the cores in runs, each run writing one list (a list per curve would be an allocation per
+/// line of a long polyline). The runs write elements, not segments to be copied into elements
+/// after: half a million arcs are 60 MB a copy.
+fn curves_to_elements(kept: &[expand::Placed], layer_of: &[Option<usize>]) -> (Vec<Element>, Aabb) {
     let run = (kept.len() / RUNS).clamp(1, MAX_CURVES_PER_RUN);
     let runs: Vec<&[expand::Placed]> = kept.chunks(run).collect();
     let done = crate::parallel::map(&runs, |run| {
-        let mut segments = Vec::with_capacity(run.len());
-        let mut counts = Vec::with_capacity(run.len());
+        let mut segments = Vec::new();
+        let mut elements = Vec::with_capacity(run.len());
+        let mut extent = Aabb::EMPTY;
         for p in run.iter() {
-            let before = segments.len();
+            segments.clear();
             p.curve.to_segments(CURVE_TOLERANCE, &mut segments);
-            counts.push(segments.len() - before);
+            let layer = layer_of[p.source].unwrap_or(0);
+            elements.extend(segments.iter().map(|&segment| {
+                extent = extent.union(&segment.bbox());
+                Element {
+                    segment,
+                    layer,
+                    source: p.source,
+                    closed_group: p.closed_group,
+                }
+            }));
         }
-        (segments, counts)
+        (elements, extent)
     });
-    let total = done.iter().map(|(s, _)| s.len()).sum();
-    let mut segments = Vec::with_capacity(total);
-    let mut counts = Vec::with_capacity(kept.len());
-    for (s, c) in done {
-        segments.extend(s);
-        counts.extend(c);
+    let total = done.iter().map(|(e, _)| e.len()).sum();
+    let mut elements = Vec::with_capacity(total);
+    let mut extent = Aabb::EMPTY;
+    for (e, b) in done {
+        elements.extend(e);
+        extent = extent.union(&b);
     }
-    (segments, counts)
+    (elements, extent)
 }
 
-/// Runs [`curves_to_segments`] cuts the curves into, at least one curve each: enough for the
+/// Runs [`curves_to_elements`] cuts the curves into, at least one curve each: enough for the
 /// parallel map to share them out (it works alone below 256 items).
 const RUNS: usize = 1024;
 /// Most curves in one run: a run of lines is then worth a thread's turn.
