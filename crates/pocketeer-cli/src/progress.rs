@@ -32,15 +32,24 @@ impl Spinner {
         let s = Spinner { bar };
         s.set_stage(stage, None);
         if !QUIET.load(Ordering::Relaxed) && std::io::stderr().is_terminal() {
-            let bar = s.bar.clone();
+            let show = |bar: &ProgressBar| {
+                bar.set_draw_target(ProgressDrawTarget::stderr());
+                bar.enable_steady_tick(Duration::from_millis(120));
+            };
             let wait = delay();
-            std::thread::spawn(move || {
-                std::thread::sleep(wait);
-                if !bar.is_finished() {
-                    bar.set_draw_target(ProgressDrawTarget::stderr());
-                    bar.enable_steady_tick(Duration::from_millis(120));
-                }
-            });
+            if wait.is_zero() {
+                // At once, not from a thread that a loaded machine may start only after a
+                // short run has ended.
+                show(&s.bar);
+            } else {
+                let bar = s.bar.clone();
+                std::thread::spawn(move || {
+                    std::thread::sleep(wait);
+                    if !bar.is_finished() {
+                        show(&bar);
+                    }
+                });
+            }
         }
         s
     }

@@ -62,6 +62,7 @@
 
 pub mod clear;
 pub mod export;
+mod fixed;
 pub mod geom;
 pub mod import;
 pub mod job;

@@ -1,6 +1,7 @@
 //! A minimal DXF writer: closed contours as LWPOLYLINE entities with bulges (arcs stay exact,
 //! a full circle as two half circles), in a file any CAD program reads.
 
+use crate::fixed::push_number;
 use crate::geom::{Contour, Segment};
 use crate::import::Units;
 use std::fmt::Write;
@@ -44,24 +45,35 @@ fn insunits(u: Units) -> i32 {
 pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     let k = 1.0 / units.mm();
     let mut s = String::new();
-    let mut pair = |code: i32, value: &str| {
-        let _ = writeln!(s, "{code:>3}\n{value}");
+    // Group codes right-aligned in three columns, as AutoCAD writes them.
+    let code = |s: &mut String, code: i32| {
+        let _ = writeln!(s, "{code:>3}");
     };
-    pair(0, "SECTION");
-    pair(2, "HEADER");
-    pair(9, "$ACADVER");
-    pair(1, "AC1015");
-    pair(9, "$INSUNITS");
-    pair(70, &insunits(units).to_string());
-    pair(0, "ENDSEC");
-    pair(0, "SECTION");
-    pair(2, "ENTITIES");
-    let num = |x: f64| format!("{:.10}", x * k);
+    let pair = |s: &mut String, c: i32, value: &str| {
+        code(s, c);
+        s.push_str(value);
+        s.push('\n');
+    };
+    let number = |s: &mut String, c: i32, v: f64, decimals: usize| {
+        code(s, c);
+        push_number(s, v, decimals);
+        s.push('\n');
+    };
+    pair(&mut s, 0, "SECTION");
+    pair(&mut s, 2, "HEADER");
+    pair(&mut s, 9, "$ACADVER");
+    pair(&mut s, 1, "AC1015");
+    pair(&mut s, 9, "$INSUNITS");
+    pair(&mut s, 70, &insunits(units).to_string());
+    pair(&mut s, 0, "ENDSEC");
+    pair(&mut s, 0, "SECTION");
+    pair(&mut s, 2, "ENTITIES");
+    let mut segs = Vec::new();
     for lc in contours {
         // A bulge gives an arc's sweep as tan(sweep / 4), which a full turn has none of: a
         // circle is written as its two halves. (Not as a CIRCLE entity, which has no
         // direction: a loop round an island runs clockwise.)
-        let mut segs = Vec::with_capacity(lc.contour.segments.len() + 1);
+        segs.clear();
         for seg in &lc.contour.segments {
             match seg {
                 Segment::Arc(a) if a.is_full_circle() => segs.extend([
@@ -71,22 +83,22 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
                 _ => segs.push(*seg),
             }
         }
-        pair(0, "LWPOLYLINE");
-        pair(100, "AcDbEntity");
-        pair(8, lc.layer);
-        pair(100, "AcDbPolyline");
-        pair(90, &segs.len().to_string());
-        pair(70, "1");
+        pair(&mut s, 0, "LWPOLYLINE");
+        pair(&mut s, 100, "AcDbEntity");
+        pair(&mut s, 8, lc.layer);
+        pair(&mut s, 100, "AcDbPolyline");
+        pair(&mut s, 90, &segs.len().to_string());
+        pair(&mut s, 70, "1");
         for seg in &segs {
             let p = seg.start();
-            pair(10, &num(p.x));
-            pair(20, &num(p.y));
+            number(&mut s, 10, p.x * k, 10);
+            number(&mut s, 20, p.y * k, 10);
             if let Segment::Arc(a) = seg {
-                pair(42, &format!("{:.12}", a.bulge()));
+                number(&mut s, 42, a.bulge(), 12);
             }
         }
     }
-    pair(0, "ENDSEC");
-    pair(0, "EOF");
+    pair(&mut s, 0, "ENDSEC");
+    pair(&mut s, 0, "EOF");
     s
 }

@@ -78,7 +78,7 @@ pub fn open_path_data(segments: &[Segment]) -> String {
 }
 
 fn num(x: f64) -> String {
-    let s = format!("{x:.6}");
+    let s = crate::fixed::fixed(x, 6);
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
         "0".into()

@@ -12,10 +12,10 @@ mod grbl;
 mod linuxcnc;
 mod mach3;
 
+use crate::fixed::{fixed, push_fixed, quantize};
 use crate::geom::{Point, Vector};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{half_turns, Feed, Move, Point3, Toolpath};
-use std::fmt::Write;
 
 /// Coolant switched on after the spindle starts and off at the end.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -423,31 +423,6 @@ fn fmt_rate(v: f64) -> String {
     t.to_string()
 }
 
-/// `v` with exactly `decimals` decimals, rounded half away from zero, never "-0.0000".
-fn fixed(v: f64, decimals: usize) -> String {
-    let mut out = String::new();
-    match quantize(v, decimals) {
-        Some(n) => push_fixed(&mut out, n, decimals),
-        None => out.push_str(&format!("{v:.decimals$}")),
-    }
-    out
-}
-
-/// `v` in units of the last printed decimal, when it fits.
-fn quantize(v: f64, decimals: usize) -> Option<i64> {
-    let scaled = (v * 10f64.powi(decimals as i32)).round();
-    (scaled.abs() < 9.0e15).then_some(scaled as i64)
-}
-
-/// Appends `n` (in units of the last decimal) with `decimals` decimals. Integer formatting:
-/// several times faster than `{:.4}` on programs of a million lines.
-fn push_fixed(out: &mut String, n: i64, decimals: usize) {
-    let unit = 10u64.pow(decimals as u32);
-    let a = n.unsigned_abs();
-    let sign = if n < 0 { "-" } else { "" };
-    let _ = write!(out, "{sign}{}.{:0decimals$}", a / unit, a % unit);
-}
-
 struct Writer {
     out: String,
     /// Program units per millimetre.
@@ -622,16 +597,6 @@ mod tests {
         assert!(g.contains("G20\n"));
         assert!(g.contains("G0 X0.39370 Y0.00000\n"), "{g}");
         assert!(g.contains("F47.244"), "{g}");
-    }
-
-    #[test]
-    fn fixed_decimals_round_and_never_print_minus_zero() {
-        assert_eq!(fixed(1.23456, 4), "1.2346");
-        assert_eq!(fixed(-0.00004, 4), "0.0000");
-        assert_eq!(fixed(-12.5, 4), "-12.5000");
-        assert_eq!(fixed(0.000051, 4), "0.0001");
-        assert_eq!(fixed(99999.99999, 4), "100000.0000");
-        assert_eq!(fixed(1e300, 4).len(), 306);
     }
 
     #[test]
