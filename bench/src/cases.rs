@@ -125,3 +125,35 @@ pub fn grid_of_islands() -> Case {
         distances: levels(0.6, 10),
     }
 }
+
+/// The smooth profile of [`smooth`] with six round islands of radius 8 on a circle of radius
+/// 55: the drawing of the whole-process comparisons (`n` elements in all).
+pub fn smooth_with_islands(n: usize, arcs: bool) -> Case {
+    let mut case = smooth(n - 6, arcs);
+    for k in 0..6 {
+        let a = k as f64 * TAU / 6.0;
+        case.rings.push(circle_cw(55.0 * a.cos(), 55.0 * a.sin(), 8.0));
+    }
+    case.name = format!(
+        "smooth profile, {n} {}, 6 islands",
+        if arcs { "arcs" } else { "lines" }
+    );
+    case
+}
+
+/// A plate with `nx` × `ny` round holes of 8 mm at a 20 mm pitch, 10 mm from its edges (the
+/// 300-hole plate of issue 18 and 21 is 20 × 15: 400 × 300 mm).
+pub fn plate(nx: usize, ny: usize) -> Case {
+    let (w, h) = (20.0 * nx as f64, 20.0 * ny as f64);
+    let mut rings = vec![vec![(0.0, 0.0, 0.0), (w, 0.0, 0.0), (w, h, 0.0), (0.0, h, 0.0)]];
+    for i in 0..nx {
+        for j in 0..ny {
+            rings.push(circle_cw(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64, 4.0));
+        }
+    }
+    Case {
+        name: format!("plate {w}x{h}, {} holes of 8 mm", nx * ny),
+        rings,
+        distances: Vec::new(),
+    }
+}

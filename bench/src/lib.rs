@@ -23,6 +23,25 @@ pub fn contour(ring: &Ring) -> Contour {
     )
 }
 
+/// The case's rings as closed LWPOLYLINEs on layer 0 of an ASCII DXF, in millimetres (bulges
+/// written only where a ring has an arc).
+pub fn dxf(case: &Case) -> String {
+    use std::fmt::Write;
+    let mut s =
+        String::from("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
+    for ring in &case.rings {
+        let _ = write!(s, "0\nLWPOLYLINE\n8\n0\n90\n{}\n70\n1\n", ring.len());
+        for &(x, y, bulge) in ring {
+            let _ = write!(s, "10\n{x:.6}\n20\n{y:.6}\n");
+            if bulge != 0.0 {
+                let _ = write!(s, "42\n{bulge:.9}\n");
+            }
+        }
+    }
+    s.push_str("0\nENDSEC\n0\nEOF\n");
+    s
+}
+
 /// The case as a pocket: the first ring its boundary, the others its islands.
 pub fn pocket(case: &Case) -> Pocket {
     Pocket {

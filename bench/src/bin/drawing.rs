@@ -4,7 +4,6 @@
 //! vertices), `islands` (the 10 × 6 grid of round islands) or `gear`.
 
 use pocketeer_bench::cases::{self, Case};
-use std::fmt::Write;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -19,22 +18,5 @@ fn main() {
             std::process::exit(2);
         }
     };
-    print!("{}", dxf(&case));
-}
-
-/// The case's rings as closed LWPOLYLINEs on layer 0, in millimetres.
-fn dxf(case: &Case) -> String {
-    let mut s =
-        String::from("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
-    for ring in &case.rings {
-        let _ = write!(s, "0\nLWPOLYLINE\n8\n0\n90\n{}\n70\n1\n", ring.len());
-        for &(x, y, bulge) in ring {
-            let _ = write!(s, "10\n{x:.6}\n20\n{y:.6}\n");
-            if bulge != 0.0 {
-                let _ = write!(s, "42\n{bulge:.9}\n");
-            }
-        }
-    }
-    s.push_str("0\nENDSEC\n0\nEOF\n");
-    s
+    print!("{}", pocketeer_bench::dxf(&case));
 }

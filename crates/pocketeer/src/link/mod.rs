@@ -30,7 +30,7 @@ pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
-use crate::geom::{Point, Segment, Tolerance};
+use crate::geom::{Aabb, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
 
@@ -235,6 +235,7 @@ pub fn link_with(
         z_top: 0.0,
         down: false,
         last: (Vec::new(), false),
+        boxes: Vec::new(),
     };
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
@@ -252,6 +253,9 @@ pub fn link_with(
         let (j, root) = pieces[k];
         let (pocket, plan) = jobs[j];
         linker.pocket = Some(pocket);
+        if !linker.plan.is_some_and(|p| std::ptr::eq(p, plan)) {
+            linker.boxes = plan.parts.iter().map(|p| p.outer.bbox()).collect();
+        }
         linker.plan = Some(plan);
         let mut z_top = 0.0;
         for &z in &passes {
@@ -285,6 +289,9 @@ struct Linker<'a> {
     down: bool,
     /// The walk last cut (the tool is at its end), and whether it is a closed loop.
     last: (Vec<Segment>, bool),
+    /// The boxes of the plan's parts (their outer loops), by part: asked for at every
+    /// choice of the next part and landing, and each a pass over its loop.
+    boxes: Vec<Aabb>,
 }
 
 impl<'a> Linker<'a> {
@@ -339,7 +346,7 @@ impl<'a> Linker<'a> {
                     // (those may still be reached from it by a slot, or from the parent).
                     let here = self.here();
                     let key = |c: usize| {
-                        let b = plan.parts[c].outer.bbox();
+                        let b = self.boxes[c];
                         (self.is_small_leaf(c), b.min.midpoint(b.max).distance(here))
                     };
                     let k = (0..visit.before.len())
@@ -359,11 +366,10 @@ impl<'a> Linker<'a> {
     /// Which of `children` (not cut yet) to cut next without an entry: of the nearest few,
     /// the nearest a slot reaches from where the tool is; none when no slot reaches them.
     fn next_child(&self, children: &[usize]) -> Option<usize> {
-        let plan = self.plan();
         let here = self.here();
         let mut by_distance: Vec<(f64, usize)> = (children.iter().enumerate())
             .map(|(k, &c)| {
-                let b = plan.parts[c].outer.bbox();
+                let b = self.boxes[c];
                 (b.min.midpoint(b.max).distance(here), k)
             })
             .collect();
@@ -399,7 +405,7 @@ impl<'a> Linker<'a> {
     fn is_small_leaf(&self, n: usize) -> bool {
         let plan = self.plan();
         let part = &plan.parts[n];
-        let b = part.outer.bbox();
+        let b = self.boxes[n];
         let d = 2.0 * plan.tool_radius;
         part.parent.is_some()
             && part.children.is_empty()
@@ -811,21 +817,39 @@ impl<'a> Linker<'a> {
     /// straight move from it to `q` stays inside `reach`.
     fn landing(&self, reach: Reach, q: Point) -> Option<Point> {
         let plan = self.plan();
-        let mut best: Option<(Point, f64)> = None;
-        // The loops of the parts cut, and the walk just cut (the tool was down at this pass's
-        // depth before the retract, so that walk is at it too).
-        let cut = (reach.cut.iter())
-            .flat_map(|&c| plan.parts[c].loops())
-            .flat_map(|l| &l.segments)
-            .chain(&self.last.0);
-        for s in cut {
-            let p = crate::geom::closest_point(s, q);
-            let d = p.distance(q);
-            if best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((p, d));
+        // The nearest point, and the rank of what it lies on: of points equally near, the one
+        // on the part first in `reach.cut`, then the walk just cut (the tool was down at this
+        // pass's depth before the retract, so that walk is at it too).
+        let mut best: Option<(Point, f64, usize)> = None;
+        let consider = |best: &mut Option<(Point, f64, usize)>, segments: &[Segment], rank: usize| {
+            for s in segments {
+                // Every point of the segment is within its length of its start.
+                if best.is_some_and(|(_, bd, _)| q.distance(s.start()) - s.length() > bd) {
+                    continue;
+                }
+                let p = crate::geom::closest_point(s, q);
+                let d = p.distance(q);
+                if best.is_none_or(|(_, bd, br)| d < bd || (d == bd && rank < br)) {
+                    *best = Some((p, d, rank));
+                }
+            }
+        };
+        consider(&mut best, &self.last.0, reach.cut.len());
+        // The parts nearest by their boxes first; those whose box is farther than the nearest
+        // point found so far are not looked into (a plate's parts cut are hundreds of loops).
+        let mut parts: Vec<(f64, usize)> = (reach.cut.iter().enumerate())
+            .map(|(rank, &c)| (self.boxes[c].distance_sq(q), rank))
+            .collect();
+        parts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (box_sq, rank) in parts {
+            if best.is_some_and(|(_, bd, _)| box_sq > bd * bd) {
+                break;
+            }
+            for l in plan.parts[reach.cut[rank]].loops() {
+                consider(&mut best, &l.segments, rank);
             }
         }
-        best.map(|(p, _)| p)
+        best.map(|(p, _, _)| p)
             .filter(|&p| self.stays_inside(p, q, reach.distance))
     }
 

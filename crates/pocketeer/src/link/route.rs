@@ -46,8 +46,27 @@ pub fn along_last(
             Segment::Line(Line::new(last_end, last_end)),
         ]
     };
+    // The MAX_TRIES least costs so far, ascending: a pair whose cost is surely above the
+    // last of them cannot be among the ones tried, and is not measured.
+    let mut least: Vec<f64> = Vec::with_capacity(MAX_TRIES + 1);
+    let end_lengths: Vec<f64> = ends.iter().map(Segment::length).collect();
     for (i, a) in last.iter().enumerate() {
-        for b in &ends {
+        // The least way back along `last` from a point of `a`.
+        let from = total - before - lengths[i];
+        let along_least = if closed {
+            // min(s, total - s) over s in [before, before + length] is least at an end.
+            before.min(from)
+        } else {
+            from
+        };
+        for (b, &b_length) in ends.iter().zip(&end_lengths) {
+            if least.len() == MAX_TRIES {
+                // Every point of a segment is within its length of its start.
+                let apart = a.start().distance(b.start()) - lengths[i] - b_length;
+                if along_least + apart.max(0.0) > least[MAX_TRIES - 1] {
+                    continue;
+                }
+            }
             let (d, pa, pb) = segment_distance(a, b, eps);
             let t = closest_param(a, pa);
             let s = before + t * lengths[i];
@@ -55,6 +74,11 @@ pub fn along_last(
             let back = total - s;
             let along = if closed { s.min(back) } else { back };
             candidates.push((along + d, i, t, pa, pb));
+            let at = least.partition_point(|&c| c <= along + d);
+            if at < MAX_TRIES {
+                least.insert(at, along + d);
+                least.truncate(MAX_TRIES);
+            }
         }
         before += lengths[i];
     }
