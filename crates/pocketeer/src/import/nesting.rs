@@ -201,14 +201,21 @@ impl Meetings {
             may_meet[a] = true;
             may_meet[b] = true;
         }
-        let refs: Vec<SegRef> = contours
+        // Nor do the segments of a contour that lie outside every other contour's box: a
+        // profile of 100 000 lines round six islands puts only the islands in the index (its
+        // own neighbours' pairs were most of the work, and are never wanted).
+        let near_others = BoxIndex::new(&contour_boxes);
+        let (refs, boxes): (Vec<SegRef>, Vec<Aabb>) = contours
             .iter()
             .enumerate()
             .filter(|&(c, _)| may_meet[c])
-            .flat_map(|(c, cc)| (0..cc.contour.segments.len()).map(move |index| SegRef { contour: c, index }))
-            .collect();
+            .flat_map(|(c, cc)| {
+                (cc.contour.segments.iter().enumerate())
+                    .map(move |(index, s)| (SegRef { contour: c, index }, s.bbox().inflated(tol.eps)))
+            })
+            .filter(|(r, b)| near_others.intersecting(b).any(|o| o != r.contour))
+            .unzip();
         let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
-        let boxes: Vec<Aabb> = refs.iter().map(|r| seg(r).bbox().inflated(tol.eps)).collect();
         let index = BoxIndex::new(&boxes);
         let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
         let mut clusters = UnionFind::new(contours.len());
