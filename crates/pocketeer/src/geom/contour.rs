@@ -272,6 +272,8 @@ pub struct WindingIndex {
     strips: Vec<Vec<u32>>,
     /// Each segment's box with the end of the segment before it, grown by the slack.
     boxes: Vec<Aabb>,
+    /// The union of `boxes`.
+    extent: Aabb,
 }
 
 impl WindingIndex {
@@ -289,6 +291,7 @@ impl WindingIndex {
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         let slack = 1e-9 * all.width().max(all.height()).max(1.0);
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(slack)).collect();
+        let extent = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         let height = all.height();
         if n == 0 || height.is_nan() || height <= 0.0 {
             return WindingIndex {
@@ -296,6 +299,7 @@ impl WindingIndex {
                 dy: 1.0,
                 strips: vec![(0..n as u32).collect()],
                 boxes,
+                extent,
             };
         }
         // As many strips as keeps the filing within a few entries per segment: long, steep
@@ -329,7 +333,15 @@ impl WindingIndex {
             dy: height / k as f64,
             strips,
             boxes,
+            extent,
         }
+    }
+
+    /// The box outside which the winding number is 0 without a segment looked at: every
+    /// segment's box (with the end before it), grown by the slack. A point's ray (to the
+    /// right) crosses none of the segments unless it meets this box.
+    pub fn extent(&self) -> Aabb {
+        self.extent
     }
 
     /// Winding number around `p` of the chain this index was built from.

@@ -1,7 +1,7 @@
 //! A pocket prepared for the questions every stage asks of it: how far a point is from the
 //! walls, whether a point is inside, whether a tool moving along a segment comes too near.
 
-use super::{Aabb, Contour, Pocket, Point, Segment, SegmentIndex, Tolerance, WindingIndex};
+use super::{Aabb, BoxIndex, Contour, Pocket, Point, Segment, SegmentIndex, Tolerance, WindingIndex};
 
 /// A region indexed once for distance and containment queries: the walls (boundary and islands)
 /// in a [`SegmentIndex`], each contour in a [`WindingIndex`]. The clearing planner, the linker,
@@ -25,6 +25,11 @@ pub struct PreparedPocket {
     walls: SegmentIndex,
     /// One per contour.
     winding: Vec<WindingIndex>,
+    /// The contours' extents (see [`WindingIndex::extent`]): a point's winding numbers are
+    /// summed over the few contours its ray meets, not over every island of a plate.
+    extents: BoxIndex,
+    /// Contours whose extent is not a finite box, asked every time.
+    unindexed: Vec<usize>,
 }
 
 impl PreparedPocket {
@@ -37,11 +42,21 @@ impl PreparedPocket {
     /// clockwise around holes), such as the loops of an offset.
     pub fn from_loops(loops: Vec<Contour>) -> PreparedPocket {
         let segments: Vec<Segment> = loops.iter().flat_map(|c| c.segments.iter().copied()).collect();
-        let winding = loops.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+        let winding: Vec<WindingIndex> = loops.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+        let finite = |b: &Aabb| b.min.is_finite() && b.max.is_finite();
+        let extents: Vec<Aabb> = winding
+            .iter()
+            .map(|w| Some(w.extent()).filter(finite).unwrap_or(Aabb::EMPTY))
+            .collect();
+        let unindexed = (0..winding.len())
+            .filter(|&k| !finite(&winding[k].extent()))
+            .collect();
         PreparedPocket {
             walls: SegmentIndex::new(&segments),
             contours: loops,
             winding,
+            extents: BoxIndex::new(&extents),
+            unindexed,
         }
     }
 
@@ -64,12 +79,11 @@ impl PreparedPocket {
     /// True when `p` (not on a contour) lies in the region: the winding numbers of the
     /// counter-clockwise boundary and clockwise islands add up to 1 there.
     pub fn contains(&self, p: Point) -> bool {
-        self.contours
-            .iter()
-            .zip(&self.winding)
-            .map(|(c, i)| i.winding(&c.segments, p))
-            .sum::<i32>()
-            > 0
+        // The ray from p to the right: a contour whose extent it misses winds 0 times.
+        let ray = Aabb::from_points(p, Point::new(f64::MAX, p.y));
+        let winding = |k: usize| self.winding[k].winding(&self.contours[k].segments, p);
+        let indexed: i32 = self.extents.intersecting(&ray).map(winding).sum();
+        indexed + self.unindexed.iter().map(|&k| winding(k)).sum::<i32>() > 0
     }
 
     /// Distance from `p` to the nearest wall or island.

@@ -366,6 +366,9 @@ impl<'a> Linker<'a> {
     /// Which of `children` (not cut yet) to cut next without an entry: of the nearest few,
     /// the nearest a slot reaches from where the tool is; none when no slot reaches them.
     fn next_child(&self, children: &[usize]) -> Option<usize> {
+        if !self.down {
+            return None;
+        }
         let here = self.here();
         let mut by_distance: Vec<(f64, usize)> = (children.iter().enumerate())
             .map(|(k, &c)| {
@@ -373,11 +376,15 @@ impl<'a> Linker<'a> {
                 (b.min.midpoint(b.max).distance(here), k)
             })
             .collect();
-        by_distance.sort_by(|a, b| a.0.total_cmp(&b.0));
-        if !self.down {
-            return None;
+        // Only the nearest few are tried: those picked out, then put in order (a plate's part
+        // has a child round every hole, and this is asked once for each).
+        let order = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+        if by_distance.len() > SLOT_CANDIDATES {
+            by_distance.select_nth_unstable_by(SLOT_CANDIDATES - 1, order);
+            by_distance.truncate(SLOT_CANDIDATES);
         }
-        (by_distance.iter().take(SLOT_CANDIDATES))
+        by_distance.sort_unstable_by(order);
+        (by_distance.iter())
             .find(|&&(_, k)| self.slot_to(children[k]).is_some())
             .map(|&(_, k)| k)
     }
@@ -470,9 +477,16 @@ impl<'a> Linker<'a> {
             self.cut_path_with(part, &outer.0, &outer.1, first, reach);
             first = false;
         }
+        // The items' boxes: nearest() measures only those a box does not already rule out.
+        let mut boxes: Vec<Aabb> = items.iter().map(|(p, _)| segments_box(&p.segments)).collect();
         while !items.is_empty() {
             let here = self.here();
-            let k = nearest(&items, |p| walk::distance_to(&p.0, here));
+            let k = nearest_bounded(
+                &items,
+                |k| boxes[k].distance_sq(here).sqrt(),
+                |p| walk::distance_to(&p.0, here),
+            );
+            boxes.swap_remove(k);
             let (item, on_the_way) = items.swap_remove(k);
             self.cut_path_with(part, &item, &on_the_way, first, reach);
             first = false;
@@ -996,6 +1010,38 @@ fn loop_path(segments: &[Segment]) -> Path {
 }
 
 /// Index of the item nearest by `distance`.
+/// [`nearest`] with a lower bound of each item's distance: the same item (the nearest, the
+/// first of those equally near), measuring only items whose bound does not put them beyond
+/// the nearest found. The item with the least bound is measured first.
+fn nearest_bounded<T>(items: &[T], bound: impl Fn(usize) -> f64, distance: impl Fn(&T) -> f64) -> usize {
+    // A distance that is not a number is never the nearest (as in `nearest`).
+    let measure = |it: &T| {
+        Some(distance(it))
+            .filter(|d| !d.is_nan())
+            .unwrap_or(f64::INFINITY)
+    };
+    let bounds: Vec<f64> = (0..items.len()).map(bound).collect();
+    let Some(seed) = (0..items.len()).min_by(|&a, &b| bounds[a].total_cmp(&bounds[b])) else {
+        return 0;
+    };
+    let mut best = (seed, measure(&items[seed]));
+    for (i, it) in items.iter().enumerate() {
+        if i == seed || bounds[i] > best.1 {
+            continue;
+        }
+        let d = measure(it);
+        if d < best.1 || (d == best.1 && i < best.0) {
+            best = (i, d);
+        }
+    }
+    best.0
+}
+
+/// The box of `segments`.
+fn segments_box(segments: &[Segment]) -> Aabb {
+    segments.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()))
+}
+
 fn nearest<T>(items: &[T], distance: impl Fn(&T) -> f64) -> usize {
     let mut best = (0, f64::INFINITY);
     for (i, it) in items.iter().enumerate() {
