@@ -8,6 +8,7 @@
 use crate::geom::{
     box_pairs, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point, Segment, Tolerance,
 };
+use std::f64::consts::PI;
 
 /// A loop cut off by a self-crossing is a sliver when its extent is at most this many join
 /// tolerances.
@@ -93,6 +94,11 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
     // about sqrt(2 r eps) from it: hits that near, on curves that do not part, are the joint.
     let joint_radius = tol.join.max(tol.crossing());
     for (i, j) in box_pairs(&boxes) {
+        let meet_only_at_joint = (i + 1 == j && only_at_joint(&segs[i], &segs[j], 0.25 * tol.crossing()))
+            || (i == 0 && j + 1 == n && only_at_joint(&segs[j], &segs[i], 0.25 * tol.crossing()));
+        if meet_only_at_joint {
+            continue;
+        }
         for h in intersect(&segs[i], &segs[j], tol.eps).iter() {
             let at_joint = match h {
                 // The contour runs back over itself.
@@ -113,6 +119,28 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
             }
         }
     }
+}
+
+/// True when the arcs `a` and `b`, `b` starting where `a` ends, can meet nowhere but at that
+/// joint, which [`visit_crossings`] passes over: they go on the same way through it (no fold
+/// back), each turns less than a half turn (so passes the joint only at its end), and their
+/// circles' other meeting point, the joint mirrored in the line of the centres, lies within
+/// `reach` of it (two circles meet twice at most). The joints of a fitted curve are such
+/// pairs, one for every arc: skipping them spares an arc-arc intersection each.
+fn only_at_joint(a: &Segment, b: &Segment, reach: f64) -> bool {
+    let (Segment::Arc(a), Segment::Arc(b)) = (a, b) else {
+        return false;
+    };
+    let joint = a.end();
+    if joint != b.start() || a.sweep().abs() >= PI || b.sweep().abs() >= PI {
+        return false;
+    }
+    let (ra, rb) = (joint - a.center(), joint - b.center());
+    // The directions of travel at the joint are the radii turned by the sweeps' senses.
+    let same_way = a.sweep().signum() * b.sweep().signum() * ra.dot(rb) > 0.0;
+    let centres = b.center() - a.center();
+    let apart = centres.length();
+    same_way && apart > 0.0 && 2.0 * centres.cross(ra).abs() <= reach * apart
 }
 
 /// Whether neighbours `a` and `b`, meeting again at the far ends of their stretches `sa` and
@@ -162,6 +190,29 @@ mod tests {
 
     fn polygon(pts: &[(f64, f64)]) -> Contour {
         Contour::polygon(&pts.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>())
+    }
+
+    #[test]
+    fn only_smooth_joints_of_short_arcs_are_passed_over_without_intersecting() {
+        let p = Point::new;
+        let reach = 1e-6;
+        // A biarc's two arcs: tangent circles, going on the same way.
+        let (j, q) = (p(10.0, 0.0), p(20.0, 0.0));
+        let first = Segment::Arc(Arc::from_center(p(5.0, 0.0), p(5.0, -5.0), j, true));
+        let second = Segment::Arc(Arc::from_center(p(15.0, 0.0), j, p(15.0, 5.0), false));
+        assert!(only_at_joint(&first, &second, reach));
+        // Folding back along a tangent circle: not passed over.
+        let back = Segment::Arc(Arc::from_center(p(7.0, 0.0), j, p(7.0, -3.0), false));
+        assert!(!only_at_joint(&first, &back, reach));
+        // Circles crossing at the joint meet again elsewhere.
+        let crossing = Segment::Arc(Arc::from_center(p(10.0, 5.0), j, q.midpoint(p(10.0, 5.0)), true));
+        assert!(!only_at_joint(&first, &crossing, reach));
+        // A half turn or more passes the joint's side again.
+        let half = Segment::Arc(Arc::from_center(p(15.0, 0.0), j, q, false));
+        assert!(!only_at_joint(&first, &half, reach));
+        // Lines are left to the intersection test.
+        let line = Segment::Line(Line::new(j, q));
+        assert!(!only_at_joint(&first, &line, reach));
     }
 
     #[test]
