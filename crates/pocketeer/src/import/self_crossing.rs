@@ -121,13 +121,19 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
     }
 }
 
-/// True when the arcs `a` and `b`, `b` starting where `a` ends, can meet nowhere but at that
-/// joint, which [`visit_crossings`] passes over: they go on the same way through it (no fold
-/// back), each turns less than a half turn (so passes the joint only at its end), and their
-/// circles' other meeting point, the joint mirrored in the line of the centres, lies within
-/// `reach` of it (two circles meet twice at most). The joints of a fitted curve are such
-/// pairs, one for every arc: skipping them spares an arc-arc intersection each.
+/// True when `a` and `b`, `b` starting where `a` ends, can meet nowhere but at that joint,
+/// which [`visit_crossings`] passes over: two lines turning by less than a right angle, or two
+/// arcs going on the same way (no fold back), each less than a half turn (so passing the
+/// joint only at its end), whose circles' other meeting point, the joint mirrored in the line
+/// of the centres, lies within `reach` of it (two circles meet twice at most). The joints of
+/// a fitted curve or a long polyline are such pairs, one for every element: skipping them
+/// spares an intersection each.
 fn only_at_joint(a: &Segment, b: &Segment, reach: f64) -> bool {
+    if let (Segment::Line(a), Segment::Line(b)) = (a, b) {
+        // Two lines meet once, or lie on one line: turning by less than a right angle at
+        // their joint (far from folding back), they share only it.
+        return a.end == b.start && (a.end - a.start).dot(b.end - b.start) > 0.0;
+    }
     let (Segment::Arc(a), Segment::Arc(b)) = (a, b) else {
         return false;
     };
@@ -210,9 +216,27 @@ mod tests {
         // A half turn or more passes the joint's side again.
         let half = Segment::Arc(Arc::from_center(p(15.0, 0.0), j, q, false));
         assert!(!only_at_joint(&first, &half, reach));
-        // Lines are left to the intersection test.
+        // A line after an arc is left to the intersection test; a line after a line, where
+        // it turns by a right angle or more.
         let line = Segment::Line(Line::new(j, q));
         assert!(!only_at_joint(&first, &line, reach));
+        let before = Segment::Line(Line::new(p(0.0, 0.0), j));
+        assert!(only_at_joint(&before, &line, reach));
+        assert!(only_at_joint(
+            &before,
+            &Segment::Line(Line::new(j, p(15.0, 8.0))),
+            reach
+        ));
+        assert!(!only_at_joint(
+            &before,
+            &Segment::Line(Line::new(j, p(10.0, 7.0))),
+            reach
+        ));
+        assert!(!only_at_joint(
+            &before,
+            &Segment::Line(Line::new(j, p(3.0, 0.001))),
+            reach
+        ));
     }
 
     #[test]
