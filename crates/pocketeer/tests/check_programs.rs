@@ -46,16 +46,21 @@ fn our_program_and_warnings(pocket: &Pocket, stepover: f64) -> (String, Vec<Link
     )
 }
 
-fn check(pocket: &Pocket, program: &str) -> CheckReport {
-    let p = read_program(program).expect("reads");
-    let params = CheckParams {
+/// The check's settings for these programs: a 6 mm tool, 2 mm deep.
+fn check_params() -> CheckParams {
+    CheckParams {
         tool_radius: 3.0,
         depth: Some(2.0),
         gouge_tolerance: 0.01,
         leftover_tolerance: 0.05,
         rapid_rate: pocketeer::simulate::check::RAPID_RATE,
         per_retract: pocketeer::machining_time::DEFAULT_RETRACT_SECONDS,
-    };
+    }
+}
+
+fn check(pocket: &Pocket, program: &str) -> CheckReport {
+    let p = read_program(program).expect("reads");
+    let params = check_params();
     check_program(std::slice::from_ref(pocket), &p, &params, &Tolerance::default()).unwrap()
 }
 
@@ -278,14 +283,7 @@ fn a_wall_pass_0_011_too_close_fails_and_0_005_passes_the_gouge_tolerance() {
 fn the_check_reports_a_step_for_each_move_and_each_cutting_move_measured() {
     let pocket = pocket();
     let program = read_program(&our_program(&pocket, 2.4)).expect("reads");
-    let params = CheckParams {
-        tool_radius: 3.0,
-        depth: Some(2.0),
-        gouge_tolerance: 0.01,
-        leftover_tolerance: 0.05,
-        rapid_rate: pocketeer::simulate::check::RAPID_RATE,
-        per_retract: pocketeer::machining_time::DEFAULT_RETRACT_SECONDS,
-    };
+    let params = check_params();
     let progress = pocketeer::progress::Recorded::default();
     let report = pocketeer::simulate::check_program_tools_with(
         std::slice::from_ref(&pocket),

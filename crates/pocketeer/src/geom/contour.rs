@@ -122,7 +122,7 @@ impl Contour {
 
     /// Bounding box.
     pub fn bbox(&self) -> Aabb {
-        self.segments.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()))
+        bbox_of(&self.segments)
     }
 
     /// Winding number of the contour around `p` (for `p` not on the contour).
@@ -134,6 +134,18 @@ impl Contour {
     pub fn contains(&self, p: Point) -> bool {
         self.winding_number(p) != 0
     }
+}
+
+/// The box round `segments` (empty for none).
+///
+/// ```
+/// use pocketeer::geom::{bbox_of, Line, Point, Segment};
+/// let l = |x0, y0, x1, y1| Segment::Line(Line::new(Point::new(x0, y0), Point::new(x1, y1)));
+/// let b = bbox_of(&[l(0.0, 0.0, 2.0, 1.0), l(2.0, 1.0, -1.0, 3.0)]);
+/// assert_eq!((b.min, b.max), (Point::new(-1.0, 0.0), Point::new(2.0, 3.0)));
+/// ```
+pub fn bbox_of(segments: &[Segment]) -> Aabb {
+    segments.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()))
 }
 
 /// Exact signed area enclosed by closed chain `segments` (positive when counter-clockwise).

@@ -115,11 +115,11 @@ impl Piece {
         match *self {
             Piece::Line { start, end } => end - start,
             Piece::Arc { center, end, ccw, .. } => {
-                let radial = end - center;
+                let left = (end - center).perp();
                 if ccw {
-                    Vector::new(-radial.y, radial.x)
+                    left
                 } else {
-                    Vector::new(radial.y, -radial.x)
+                    -left
                 }
             }
         }

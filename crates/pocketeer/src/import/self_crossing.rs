@@ -6,7 +6,8 @@
 //! removed (and reported); any other self-crossing is refused with its coordinates.
 
 use crate::geom::{
-    box_pairs, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point, Segment, Tolerance,
+    bbox_of, box_pairs, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point, Segment,
+    Tolerance,
 };
 use std::f64::consts::PI;
 
@@ -41,7 +42,7 @@ pub fn make_simple(contour: &Contour, tol: &Tolerance) -> Result<(Contour, Vec<P
         };
         let (inner, outer) = split_loops(&c, i, j, ta, tb, point);
         let small = |segs: &[Segment]| {
-            let b = segs.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()));
+            let b = bbox_of(segs);
             b.width().hypot(b.height()) <= SLIVER_FACTOR * tol.join
         };
         let keep = if small(&inner) && !outer.is_empty() {

@@ -30,7 +30,7 @@ pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
-use crate::geom::{Aabb, Point, Segment, Tolerance};
+use crate::geom::{bbox_of, Aabb, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
 
@@ -456,12 +456,11 @@ impl<'a> Linker<'a> {
     fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
         let part = &self.plan().parts[n];
         // The part's loops, each with the clean-up paths cut on the way round it.
-        let outer = (loop_path(&part.outer.segments), Vec::new());
+        let mut outer = (loop_path(&part.outer.segments), Vec::new());
         let mut items: Vec<(Path, Vec<Path>)> = (part.holes.iter())
             .map(|h| (loop_path(&h.segments), Vec::new()))
             .collect();
         let mut loose = Vec::new();
-        let mut outer = outer;
         for c in &part.cleanups {
             match self.host_of(c, &outer.0, &items) {
                 Some(0) => outer.1.push(c.clone()),
@@ -471,14 +470,15 @@ impl<'a> Linker<'a> {
         }
         items.extend(loose);
         let here = self.here();
-        let outer_first = !items.is_empty()
-            && (items.iter()).all(|p| walk::distance_to(&outer.0, here) < walk::distance_to(&p.0, here));
+        let to_outer = walk::distance_to(&outer.0, here);
+        let outer_first =
+            !items.is_empty() && (items.iter()).all(|p| to_outer < walk::distance_to(&p.0, here));
         if outer_first {
             self.cut_path_with(part, &outer.0, &outer.1, first, reach);
             first = false;
         }
         // The items' boxes: nearest() measures only those a box does not already rule out.
-        let mut boxes: Vec<Aabb> = items.iter().map(|(p, _)| segments_box(&p.segments)).collect();
+        let mut boxes: Vec<Aabb> = items.iter().map(|(p, _)| bbox_of(&p.segments)).collect();
         while !items.is_empty() {
             let here = self.here();
             let k = nearest_bounded(
@@ -1035,11 +1035,6 @@ fn nearest_bounded<T>(items: &[T], bound: impl Fn(usize) -> f64, distance: impl 
         }
     }
     best.0
-}
-
-/// The box of `segments`.
-fn segments_box(segments: &[Segment]) -> Aabb {
-    segments.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()))
 }
 
 fn nearest<T>(items: &[T], distance: impl Fn(&T) -> f64) -> usize {

@@ -35,9 +35,27 @@ fn planned(pocket: &Pocket, stepover: f64) -> (ClearPlan, PreparedPocket) {
 }
 
 fn linked(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, PreparedPocket) {
+    let (l, _, prepared) = linked_plan(pocket, stepover, entry);
+    (l, prepared)
+}
+
+/// [`linked`] with the plan it linked, its moves checked for gouges.
+fn linked_plan(pocket: &Pocket, stepover: f64, entry: Entry) -> (Linked, ClearPlan, PreparedPocket) {
     let (plan, prepared) = planned(pocket, stepover);
     let l = link(&[(&prepared, &plan)], &params(entry), &Tolerance::default()).unwrap();
-    (l, prepared)
+    assert_no_gouge(&l.toolpath, &prepared);
+    (l, plan, prepared)
+}
+
+/// A `width` × `height` rectangle with two round islands of radius 4 on its middle line, at
+/// `xs`.
+fn two_islands(width: f64, height: f64, xs: [f64; 2]) -> Pocket {
+    let island =
+        |x: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, 0.5 * height), 4.0))]).reversed();
+    Pocket {
+        boundary: rect(0.0, 0.0, width, height),
+        islands: xs.map(island).to_vec(),
+    }
 }
 
 /// Every feed move below the stock top keeps the tool centre at least the radius from the
@@ -159,14 +177,7 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
         boundary: circle(60.0),
         islands: vec![circle(15.0).reversed()],
     };
-    let (plan, prepared) = planned(&pocket, 2.4);
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
+    let (l, plan, _) = linked_plan(&pocket, 2.4, Entry::Helix);
     // Each level's crossing: from its loop round the hub to its outer loop.
     let crossings: f64 = (plan.parts.iter())
         .filter(|p| !p.holes.is_empty())
@@ -189,15 +200,8 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
 fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
     // Two islands 60 mm apart: their loops at the walls' level are 46 mm apart, 2.8 s at the
     // cutting feed against about 1.3 s up, across at rapid, down and a retract's half second.
-    let circle = |x: f64, r: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, 20.0), r))]);
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 120.0, 40.0),
-        islands: vec![circle(30.0, 4.0).reversed(), circle(90.0, 4.0).reversed()],
-    };
-    let (plan, prepared) = planned(&pocket, 2.4);
+    let (l, plan, _) = linked_plan(&two_islands(120.0, 40.0, [30.0, 90.0]), 2.4, Entry::Helix);
     let params = params(Entry::Helix);
-    let l = link(&[(&prepared, &plan)], &params, &Tolerance::default()).unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
     let on_a_path = |p: Point| {
         (plan.parts.iter())
             .flat_map(|q| {
@@ -235,19 +239,7 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
     // loops inside them: clean-up paths. Each one whose ends both lie within the tool's disc
     // at the nearest point of a loop of its part is cut from that loop, out and back, not
     // reached by a link of its own.
-    let circle = |x: f64, r: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, 30.0), r))]);
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 120.0, 60.0),
-        islands: vec![circle(35.0, 4.0).reversed(), circle(85.0, 4.0).reversed()],
-    };
-    let (plan, prepared) = planned(&pocket, 4.2);
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
+    let (l, plan, _) = linked_plan(&two_islands(120.0, 60.0, [35.0, 85.0]), 4.2, Entry::Helix);
     let on_loop = |part: &Part, p: Point| {
         part.loops()
             .flat_map(|c| &c.segments)

@@ -105,35 +105,36 @@ fn sampled(
     // (engagement in degrees, length it stands for)
     let mut samples: Vec<(f64, f64)> = Vec::new();
     let mut max: (f64, Option<Place>) = (0.0, None);
+    // The places measured along one move: (parameter, length it stands for).
+    let mut places: Vec<(f64, f64)> = Vec::new();
     for &k in &cutting {
         progress.advance(1);
         let m = &moves[k];
         let len = m.length();
-        let (ts, weight): (Vec<f64>, Vec<f64>) = if by_move {
+        places.clear();
+        if by_move {
             let n = per_move(len);
-            (1..=n).map(|j| (j as f64 / n as f64, len / n as f64)).unzip()
+            places.extend((1..=n).map(|j| (j as f64 / n as f64, len / n as f64)));
         } else {
-            let mut at = Vec::new();
             // The first sample where the length since the last reaches the spacing, then
             // every spacing; what is left over counts towards the next move's.
             let mut along = spacing - since_last;
             let mut from = 0.0;
             while along <= len {
-                at.push((
+                places.push((
                     along / len,
                     along - from + if from == 0.0 { since_last } else { 0.0 },
                 ));
                 from = along;
                 along += spacing;
             }
-            since_last = if at.is_empty() {
+            since_last = if places.is_empty() {
                 since_last + len
             } else {
                 len - from
             };
-            at.into_iter().unzip()
-        };
-        for (t, w) in ts.into_iter().zip(weight) {
+        }
+        for &(t, w) in &places {
             let deg = engagement_at(moves, history, k, t, r);
             samples.push((deg, w));
             if deg > max.0 || max.1.is_none() {
