@@ -1,5 +1,5 @@
 //! The import's phases on one drawing, median wall time of several runs: reading the DXF into
-//! elements (curves fitted), chaining them into contours, nesting contours into pockets, and
+//! elements (curves fitted; its first steps, group codes and sections, also timed alone), chaining them into contours, nesting contours into pockets, and
 //! the read rate. `cargo run --release --bin import -- FILE.dxf [RUNS]`.
 
 use pocketeer::ImportOptions;
@@ -20,8 +20,17 @@ fn main() {
     let bytes = std::fs::read(path).expect("the drawing reads");
     let options = ImportOptions::default();
     let (mut read, mut chain, mut nest) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut groups, mut document) = (Vec::new(), Vec::new());
     let mut elements = 0;
     for _ in 0..runs {
+        // The reader's first two steps alone: group codes, then sections and entities.
+        let t = Instant::now();
+        let list = pocketeer::import::dxf::GroupList::read(&bytes).expect("the groups read");
+        groups.push(t.elapsed().as_secs_f64());
+        let t = Instant::now();
+        let doc = pocketeer::import::dxf::parse_document(&list).expect("the sections read");
+        document.push(t.elapsed().as_secs_f64());
+        std::hint::black_box(doc);
         let t = Instant::now();
         let drawing = pocketeer::read_drawing(&bytes, &options).expect("the drawing imports");
         read.push(t.elapsed().as_secs_f64());
@@ -39,10 +48,12 @@ fn main() {
     }
     let (r, c, n) = (median(read), median(chain), median(nest));
     println!(
-        "{path}: {:.1} MB, {elements} elements; read {:.0} ms ({:.1} MB/s), chain {:.0} ms, nest {:.0} ms, total {:.0} ms (medians of {runs})",
+        "{path}: {:.1} MB, {elements} elements; read {:.0} ms ({:.1} MB/s; groups {:.0} ms, sections {:.0} ms), chain {:.0} ms, nest {:.0} ms, total {:.0} ms (medians of {runs})",
         bytes.len() as f64 / 1e6,
         1e3 * r,
         bytes.len() as f64 / 1e6 / r,
+        1e3 * median(groups),
+        1e3 * median(document),
         1e3 * c,
         1e3 * n,
         1e3 * (r + c + n)

@@ -54,11 +54,10 @@ fn the_body_touching_the_plate_edges_is_an_island_of_the_plate() {
 fn binary_dxf_r12_and_r2000_are_read() {
     for f in ["corpus/mit/bin_dxf_r12.dxf", "corpus/mit/bin_dxf_r2000.dxf"] {
         let bytes = std::fs::read(fixture(f)).unwrap();
-        let groups = pocketeer::import::dxf::read_groups(&bytes).unwrap();
-        assert!(groups.binary && groups.saw_eof, "{f}");
+        let list = pocketeer::import::dxf::GroupList::read(&bytes).unwrap();
+        assert!(list.binary() && list.saw_eof(), "{f}");
         assert!(
-            groups
-                .groups
+            list.all()
                 .iter()
                 .any(|g| g.is(0, "ENTITIES") || g.is(2, "ENTITIES")),
             "{f}"

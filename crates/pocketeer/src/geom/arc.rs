@@ -153,6 +153,20 @@ impl Arc {
         }
     }
 
+    /// The arc with all its numbers given, ends included, for a caller that maps an arc whose
+    /// ends must stay exactly where they are mapped to (a polyline's vertices): `start` and
+    /// `end` must lie on the circle at `start_angle` and `start_angle + sweep`, to rounding.
+    pub fn through_ends(
+        center: Point,
+        radius: f64,
+        start_angle: f64,
+        sweep: f64,
+        start: Point,
+        end: Point,
+    ) -> Arc {
+        Arc::with_ends(center, radius, start_angle, sweep, start, end)
+    }
+
     /// DXF bulge: tan(sweep / 4).
     pub fn bulge(&self) -> f64 {
         (self.sweep / 4.0).tan()

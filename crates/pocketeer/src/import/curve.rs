@@ -104,6 +104,22 @@ impl Affine {
     pub fn det(&self) -> f64 {
         self.a * self.d - self.b * self.c
     }
+
+    /// The scale factor when the map keeps shapes (a rotation or mirroring, a uniform scale and
+    /// a translation): circles stay circles. `None` for any other map.
+    ///
+    /// ```
+    /// use pocketeer::import::curve::Affine;
+    /// assert_eq!(Affine::scale(25.4).similarity(), Some(25.4));
+    /// assert_eq!(Affine::scale_xy(1.0, -1.0).similarity(), Some(1.0));
+    /// assert_eq!(Affine::scale_xy(2.0, 1.0).similarity(), None);
+    /// ```
+    pub fn similarity(&self) -> Option<f64> {
+        let turning = self.a == self.d && self.b == -self.c;
+        let mirroring = self.a == -self.d && self.b == self.c;
+        let scale = self.a.hypot(self.c);
+        ((turning || mirroring) && scale > 0.0 && scale.is_finite()).then_some(scale)
+    }
 }
 
 /// The map from an entity's object coordinate system (normal `n`, elevation `z`) to world XY,
@@ -191,6 +207,18 @@ impl EllipseArc {
             (base - self.t0, -self.sweep)
         };
         Some(Arc::new(self.center, 0.5 * (lu + lv), start, sweep))
+    }
+
+    /// The circular arc `arc` in conjugate form.
+    pub fn of_arc(arc: &Arc) -> EllipseArc {
+        let r = arc.radius();
+        EllipseArc {
+            center: arc.center(),
+            u: Vector::new(r, 0.0),
+            v: Vector::new(0.0, r),
+            t0: arc.start_angle(),
+            sweep: arc.sweep(),
+        }
     }
 
     /// The image under `m`.
@@ -377,6 +405,9 @@ impl Nurbs {
 pub enum Curve {
     /// A straight line.
     Line(Point, Point),
+    /// A circular arc through given ends (a polyline's bulge): kept exact, ends included, as
+    /// long as the maps it goes through keep circles.
+    Arc(Arc),
     /// An elliptical or circular arc.
     Ellipse(EllipseArc),
     /// A spline.
@@ -388,6 +419,27 @@ impl Curve {
     pub fn transformed(&self, m: &Affine) -> Curve {
         match self {
             Curve::Line(a, b) => Curve::Line(m.point(*a), m.point(*b)),
+            Curve::Arc(arc) => match m.similarity() {
+                Some(scale) => {
+                    let center = m.point(arc.center());
+                    let (start, end) = (m.point(arc.start()), m.point(arc.end()));
+                    let keeps_angles = m.b == 0.0 && m.c == 0.0 && m.a > 0.0;
+                    let (start_angle, sweep) = if keeps_angles {
+                        (arc.start_angle(), arc.sweep())
+                    } else {
+                        ((start - center).angle(), arc.sweep() * m.det().signum())
+                    };
+                    Curve::Arc(Arc::through_ends(
+                        center,
+                        arc.radius() * scale,
+                        start_angle,
+                        sweep,
+                        start,
+                        end,
+                    ))
+                }
+                None => Curve::Ellipse(EllipseArc::of_arc(arc).transformed(m)),
+            },
             Curve::Ellipse(e) => Curve::Ellipse(e.transformed(m)),
             Curve::Spline(s) => Curve::Spline(s.transformed(m)),
         }
@@ -398,6 +450,14 @@ impl Curve {
         let ok = |p: Point| p.is_finite() && p.x.abs() <= limit && p.y.abs() <= limit;
         let bad = match self {
             Curve::Line(a, b) => [*a, *b].into_iter().find(|p| !ok(*p)),
+            Curve::Arc(arc) => [arc.center(), arc.start(), arc.end()]
+                .into_iter()
+                .find(|p| !ok(*p))
+                .or_else(|| {
+                    let defined =
+                        arc.radius().is_finite() && arc.start_angle().is_finite() && arc.sweep().is_finite();
+                    (!defined).then_some(arc.center())
+                }),
             Curve::Ellipse(e) => {
                 let pts = [e.center, e.center + e.u, e.center + e.v];
                 pts.into_iter()
@@ -409,11 +469,25 @@ impl Curve {
         bad.map_or(Ok(()), Err)
     }
 
+    /// True for a curve that becomes biarcs (an ellipse or a spline), false for one that is a
+    /// line or an arc already.
+    pub fn needs_fitting(&self) -> bool {
+        match self {
+            Curve::Line(..) | Curve::Arc(_) => false,
+            Curve::Ellipse(e) => e.as_circular().is_none(),
+            Curve::Spline(_) => true,
+        }
+    }
+
     /// The curve as exact lines and arcs: lines and circular arcs as they are, ellipses and
     /// splines as biarcs within `tolerance`.
     pub fn to_segments(&self, tolerance: f64, out: &mut Vec<Segment>) {
         match self {
             Curve::Line(a, b) => out.push(Segment::Line(Line::new(*a, *b))),
+            Curve::Arc(arc) if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() => {
+                out.push(Segment::Line(Line::new(arc.start(), arc.end())))
+            }
+            Curve::Arc(arc) => out.push(Segment::Arc(*arc)),
             Curve::Ellipse(e) => match e.as_circular() {
                 Some(arc) if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() => {
                     out.push(Segment::Line(Line::new(arc.start(), arc.end())))

@@ -3,17 +3,16 @@
 use super::curve::{ocs_to_world, Affine, Curve, EllipseArc, Nurbs};
 use super::dxf::{Group, RawEntity};
 use crate::geom::{Arc, Point, Vector};
+use smallvec::SmallVec;
 use std::f64::consts::TAU;
 
 /// What reading one entity gave.
 pub enum Drawn {
-    /// The curves it draws (possibly none, e.g. a one-point polyline); `closed` when they form
-    /// a closed contour by themselves, in order (a closed polyline, a closed or periodic spline):
-    /// such a contour is whole by construction, and is never chained with other elements nor
-    /// cut by duplicate removal.
+    /// It draws curves, handed out as they were read (possibly none, e.g. a one-point
+    /// polyline); `closed` when they form a closed contour by themselves, in order (a closed
+    /// polyline, a closed or periodic spline): such a contour is whole by construction, and is
+    /// never chained with other elements nor cut by duplicate removal.
     Curves {
-        /// The curves.
-        curves: Vec<Curve>,
         /// True for a closed entity.
         closed: bool,
     },
@@ -21,18 +20,30 @@ pub enum Drawn {
     Ignored,
 }
 
-/// Values of one entity, by group code.
-struct Fields<'a>(&'a RawEntity);
+/// Values of one entity, by group code: its groups read once (an entity's groups are a span of
+/// the file, read again on every pass over them).
+pub struct Fields<'a>(SmallVec<[Group<'a>; 24]>);
 
-impl Fields<'_> {
-    fn real(&self, code: i32) -> Option<f64> {
-        self.0.group(code).and_then(Group::real)
+impl<'a> Fields<'a> {
+    /// The groups of `e`.
+    pub fn of(e: &RawEntity<'a>) -> Self {
+        Fields(e.groups().collect())
     }
-    fn real_or(&self, code: i32, default: f64) -> f64 {
+    /// The first group with `code`.
+    pub fn group(&self, code: i32) -> Option<&Group<'a>> {
+        self.0.iter().find(|g| g.code == code)
+    }
+    /// The first value of `code` as a number.
+    pub fn real(&self, code: i32) -> Option<f64> {
+        self.group(code).and_then(Group::real)
+    }
+    /// The first value of `code` as a number, `default` when absent or not a number.
+    pub fn real_or(&self, code: i32, default: f64) -> f64 {
         self.real(code).unwrap_or(default)
     }
-    fn int_or(&self, code: i32, default: i64) -> i64 {
-        self.0.group(code).and_then(Group::int).unwrap_or(default)
+    /// The first value of `code` as an integer, `default` when absent or not one.
+    pub fn int_or(&self, code: i32, default: i64) -> i64 {
+        self.group(code).and_then(Group::int).unwrap_or(default)
     }
     fn point(&self, code: i32) -> Option<Point> {
         Some(Point::new(self.real(code)?, self.real_or(code + 10, 0.0)))
@@ -50,7 +61,6 @@ impl Fields<'_> {
     /// Every value of `code`, in order.
     fn all(&self, code: i32) -> Vec<f64> {
         self.0
-            .groups
             .iter()
             .filter(|g| g.code == code)
             .map(|g| g.real().unwrap_or(f64::NAN))
@@ -58,28 +68,30 @@ impl Fields<'_> {
     }
 }
 
-/// The curves of a drawing entity. Errors are messages about this entity.
-pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
-    let f = Fields(e);
-    let open = |curves| {
-        Ok(Drawn::Curves {
-            curves,
-            closed: false,
-        })
+/// The curves of a drawing entity, each handed to `emit` in order (a polyline of a million
+/// vertices is not first made a list). Errors are messages about this entity.
+pub fn curves_of(e: &RawEntity, emit: &mut dyn FnMut(Curve)) -> Result<Drawn, String> {
+    if e.kind == "LWPOLYLINE" {
+        // Read in one pass: a polyline's groups are mostly its vertices' and may be millions.
+        return Ok(lwpolyline(e, emit));
+    }
+    let f = Fields::of(e);
+    let mut all = |curves: Vec<Curve>, closed: bool| {
+        curves.into_iter().for_each(&mut *emit);
+        Ok(Drawn::Curves { closed })
     };
-    match e.kind.as_str() {
-        "LINE" => open(line(&f)?),
-        "CIRCLE" | "ARC" => open(circle_or_arc(e, &f)?),
+    match e.kind.as_ref() {
+        "LINE" => all(line(&f)?, false),
+        "CIRCLE" | "ARC" => all(circle_or_arc(e, &f)?, false),
         "ELLIPSE" => {
             let curves = ellipse(&f)?;
             // A full ellipse is a contour by itself, as a closed spline is.
             let closed = curves
                 .iter()
                 .all(|c| matches!(c, Curve::Ellipse(e) if e.sweep.abs() == TAU));
-            Ok(Drawn::Curves { curves, closed })
+            all(curves, closed)
         }
-        "LWPOLYLINE" => Ok(lwpolyline(e, &f)),
-        "POLYLINE" => old_polyline(e, &f),
+        "POLYLINE" => old_polyline(e, &f, emit),
         "SPLINE" => {
             let curves = spline(&f)?;
             // Closed (bit 1) or periodic (bit 2), and the curve really comes back to its start.
@@ -88,7 +100,7 @@ pub fn curves_of(e: &RawEntity) -> Result<Drawn, String> {
                 && curves
                     .iter()
                     .all(|c| matches!(c, Curve::Spline(s) if s.is_closed()));
-            Ok(Drawn::Curves { curves, closed })
+            all(curves, closed)
         }
         // Text, dimensions, hatches, meshes, solids, images, ...: no outline.
         _ => Ok(Drawn::Ignored),
@@ -164,9 +176,12 @@ fn ellipse(f: &Fields) -> Result<Vec<Curve>, String> {
     })])
 }
 
-fn lwpolyline(e: &RawEntity, f: &Fields) -> Drawn {
+fn lwpolyline(e: &RawEntity, emit: &mut dyn FnMut(Curve)) -> Drawn {
     let mut verts: Vec<(Point, f64)> = Vec::new();
-    for g in &e.groups {
+    // The entity's own values, first of each as everywhere else.
+    let (mut flags, mut elevation) = (None, None);
+    let mut extrusion = [None; 3];
+    for g in e.groups() {
         match g.code {
             10 => verts.push((Point::new(g.real().unwrap_or(f64::NAN), 0.0), 0.0)),
             20 => {
@@ -179,19 +194,29 @@ fn lwpolyline(e: &RawEntity, f: &Fields) -> Drawn {
                     v.1 = g.real().unwrap_or(0.0);
                 }
             }
+            70 => flags = flags.or(Some(g)),
+            38 => elevation = elevation.or(Some(g)),
+            210 | 220 | 230 => {
+                let k = (g.code / 10 - 21) as usize;
+                extrusion[k] = extrusion[k].or(Some(g));
+            }
             _ => {}
         }
     }
-    let closed = f.int_or(70, 0) & 1 == 1;
-    Drawn::Curves {
-        curves: polyline(&verts, closed, &f.ocs(f.real_or(38, 0.0))),
-        closed,
-    }
+    let closed = flags.and_then(|g| g.int()).unwrap_or(0) & 1 == 1;
+    let value = |g: Option<Group>, default: f64| g.and_then(|g| g.real()).unwrap_or(default);
+    let normal = [
+        value(extrusion[0], 0.0),
+        value(extrusion[1], 0.0),
+        value(extrusion[2], 1.0),
+    ];
+    polyline(&verts, closed, &ocs_to_world(normal, value(elevation, 0.0)), emit);
+    Drawn::Curves { closed }
 }
 
 /// A POLYLINE with its VERTEX entities: 2D (bulges, in its OCS), 3D (projected), or a
 /// spline-fit one (its fitted vertices); meshes draw no outline.
-fn old_polyline(e: &RawEntity, f: &Fields) -> Result<Drawn, String> {
+fn old_polyline(e: &RawEntity, f: &Fields, emit: &mut dyn FnMut(Curve)) -> Result<Drawn, String> {
     let flags = f.int_or(70, 0);
     if flags & (16 | 64) != 0 {
         return Ok(Drawn::Ignored); // polygon and polyface meshes are surfaces, not outlines
@@ -200,7 +225,7 @@ fn old_polyline(e: &RawEntity, f: &Fields) -> Result<Drawn, String> {
     let spline_fit = flags & 4 != 0;
     let mut verts = Vec::new();
     for v in &e.vertices {
-        let vf = Fields(v);
+        let vf = Fields::of(v);
         let vflags = vf.int_or(70, 0);
         // A spline-fit polyline lists its frame (control) vertices too: draw the fitted ones.
         if spline_fit && vflags & 16 != 0 {
@@ -215,17 +240,14 @@ fn old_polyline(e: &RawEntity, f: &Fields) -> Result<Drawn, String> {
         f.ocs(f.real_or(30, 0.0))
     };
     let closed = flags & 1 == 1;
-    Ok(Drawn::Curves {
-        curves: polyline(&verts, closed, &m),
-        closed,
-    })
+    polyline(&verts, closed, &m, emit);
+    Ok(Drawn::Curves { closed })
 }
 
 /// Lines and bulge arcs through `verts` (point, bulge to the next), mapped by `m`.
-fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine) -> Vec<Curve> {
+fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine, emit: &mut dyn FnMut(Curve)) {
     let n = verts.len();
     let count = if closed { n } else { n.saturating_sub(1) };
-    let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let (a, bulge) = verts[i];
         let b = verts[(i + 1) % n].0;
@@ -233,21 +255,10 @@ fn polyline(verts: &[(Point, f64)], closed: bool, m: &Affine) -> Vec<Curve> {
             continue;
         }
         match Arc::from_bulge(a, b, bulge) {
-            Some(arc) => {
-                let r = arc.radius();
-                let ea = EllipseArc {
-                    center: arc.center(),
-                    u: Vector::new(r, 0.0),
-                    v: Vector::new(0.0, r),
-                    t0: arc.start_angle(),
-                    sweep: arc.sweep(),
-                };
-                out.push(Curve::Ellipse(ea.transformed(m)));
-            }
-            None => out.push(Curve::Line(m.point(a), m.point(b))),
+            Some(arc) => emit(Curve::Arc(arc).transformed(m)),
+            None => emit(Curve::Line(m.point(a), m.point(b))),
         }
     }
-    out
 }
 
 fn spline(f: &Fields) -> Result<Vec<Curve>, String> {

@@ -2,8 +2,8 @@
 //! the layer it is drawn on and the entity it comes from.
 
 use super::curve::{ocs_to_world, Affine, Curve};
-use super::dxf::{Document, Group, RawEntity};
-use super::entities::{curves_of, Drawn};
+use super::dxf::{Document, RawEntity};
+use super::entities::{curves_of, Drawn, Fields};
 use super::error::{EntityRef, ImportError};
 use crate::geom::Vector;
 use crate::import::ImportWarning;
@@ -27,8 +27,8 @@ pub struct Placed {
 }
 
 /// Walks model space, expanding INSERTs, and collects every curve.
-pub struct Expander<'a> {
-    doc: &'a Document,
+pub struct Expander<'a, 'b> {
+    doc: &'a Document<'b>,
     /// Curves found.
     pub placed: Vec<Placed>,
     /// The entity of each placement that drew curves (inside blocks, the innermost one), for
@@ -43,9 +43,9 @@ pub struct Expander<'a> {
     sizes: std::collections::HashMap<String, u64>,
 }
 
-impl<'a> Expander<'a> {
+impl<'a, 'b> Expander<'a, 'b> {
     /// An expander over `doc`.
-    pub fn new(doc: &'a Document) -> Self {
+    pub fn new(doc: &'a Document<'b>) -> Self {
         Expander {
             doc,
             placed: Vec::new(),
@@ -75,20 +75,28 @@ impl<'a> Expander<'a> {
                 self.insert(e, m, &layer)?;
                 continue;
             }
-            match curves_of(e) {
-                Ok(Drawn::Curves { curves, closed }) => {
+            // Curves go straight into `placed` (a polyline of a million vertices is not
+            // first a list of its own), then are given their group and checked.
+            let first = self.placed.len();
+            let source = self.sources.len();
+            let placed = &mut self.placed;
+            let drawn = curves_of(e, &mut |c| {
+                placed.push(Placed {
+                    curve: c.transformed(m),
+                    source,
+                    closed_group: None,
+                })
+            });
+            match drawn {
+                Ok(Drawn::Curves { closed }) => {
                     let closed_group = closed.then(|| {
                         self.groups += 1;
                         self.groups
                     });
-                    // Once per entity: finding the handle scans the entity's groups, which
-                    // for a long polyline are many.
-                    let source = self.sources.len();
                     self.sources.push(e.reference(&layer));
-                    self.placed.reserve(curves.len());
-                    for c in curves {
-                        let curve = c.transformed(m);
-                        if let Err(p) = curve.check_coordinates(super::MAX_COORDINATE) {
+                    for p in &mut self.placed[first..] {
+                        p.closed_group = closed_group;
+                        if let Err(p) = p.curve.check_coordinates(super::MAX_COORDINATE) {
                             return Err(ImportError::BadEntity {
                                 entity: e.reference(&layer),
                                 what: format!(
@@ -99,11 +107,6 @@ impl<'a> Expander<'a> {
                                 ),
                             });
                         }
-                        self.placed.push(Placed {
-                            curve,
-                            source,
-                            closed_group,
-                        });
                     }
                     if self.placed.len() > MAX_CURVES {
                         return Err(ImportError::TooLarge {
@@ -125,9 +128,10 @@ impl<'a> Expander<'a> {
     }
 
     fn insert(&mut self, e: &RawEntity, m: &Affine, layer: &str) -> Result<(), ImportError> {
-        let real = |code: i32, default: f64| e.group(code).and_then(Group::real).unwrap_or(default);
-        let int = |code: i32, default: i64| e.group(code).and_then(Group::int).unwrap_or(default);
-        let name = e.text(2).unwrap_or_default().trim().to_owned();
+        let f = Fields::of(e);
+        let real = |code: i32, default: f64| f.real_or(code, default);
+        let int = |code: i32, default: i64| f.int_or(code, default);
+        let name = f.group(2).map(|g| g.text()).unwrap_or_default().trim().to_owned();
         let Some(block) = self.doc.blocks.get(&name.to_uppercase()) else {
             self.warnings.push(ImportWarning::UndefinedBlock {
                 insert: e.reference(layer),
@@ -207,9 +211,10 @@ impl<'a> Expander<'a> {
             if depth >= MAX_NESTING {
                 continue;
             }
-            let int = |code: i32| e.group(code).and_then(Group::int).unwrap_or(1).max(1);
+            let f = Fields::of(e);
+            let int = |code: i32| f.int_or(code, 1).max(1);
             let cells = u64::try_from(int(70).saturating_mul(int(71))).unwrap_or(u64::MAX);
-            let child = e.text(2).unwrap_or_default().trim().to_owned();
+            let child = f.group(2).map(|g| g.text()).unwrap_or_default().trim().to_owned();
             n = n.saturating_add(self.expanded_size(&child, depth + 1).saturating_mul(cells));
         }
         self.sizes.insert(key, n);

@@ -128,18 +128,19 @@ impl Drawing {
 
 /// Reads a DXF file's bytes into a [`Drawing`].
 pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, ImportError> {
-    let groups = dxf::read_groups(bytes)?;
-    let binary = groups.binary;
-    let mut doc = dxf::parse_document(groups)?;
+    let list = dxf::GroupList::read(bytes)?;
+    let mut doc = dxf::parse_document(&list)?;
+    let binary = doc.binary;
     let mut warnings = std::mem::take(&mut doc.warnings);
     let (declared_units, units) = drawing_units(&doc, options, &mut warnings);
 
     let mut model = std::mem::take(&mut doc.entities);
     model.retain(|e| !e.in_paper_space());
-    let mut entity_counts = BTreeMap::new();
+    let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     for e in &model {
-        *entity_counts.entry(e.kind.clone()).or_insert(0) += 1;
+        *counts.entry(e.kind.as_ref()).or_insert(0) += 1;
     }
+    let entity_counts: BTreeMap<String, usize> = counts.into_iter().map(|(k, n)| (k.to_owned(), n)).collect();
     if model.is_empty() {
         return Err(ImportError::EmptyModelSpace);
     }
@@ -256,9 +257,7 @@ fn elements_of(
 /// line of a long polyline). The runs write elements, not segments to be copied into elements
 /// after: half a million arcs are 60 MB a copy.
 fn curves_to_elements(kept: &[expand::Placed], layer_of: &[Option<usize>]) -> (Vec<Element>, Aabb) {
-    let run = (kept.len() / RUNS).clamp(1, MAX_CURVES_PER_RUN);
-    let runs: Vec<&[expand::Placed]> = kept.chunks(run).collect();
-    let done = crate::parallel::map(&runs, |run| {
+    let write = |run: &[expand::Placed]| {
         let mut segments = Vec::new();
         let mut elements = Vec::with_capacity(run.len());
         let mut extent = Aabb::EMPTY;
@@ -277,7 +276,14 @@ fn curves_to_elements(kept: &[expand::Placed], layer_of: &[Option<usize>]) -> (V
             }));
         }
         (elements, extent)
-    });
+    };
+    if !kept.iter().any(|p| p.curve.needs_fitting()) {
+        // Lines and arcs only: one pass writes the list, with no runs to copy together.
+        return write(kept);
+    }
+    let run = (kept.len() / RUNS).clamp(1, MAX_CURVES_PER_RUN);
+    let runs: Vec<&[expand::Placed]> = kept.chunks(run).collect();
+    let done = crate::parallel::map(&runs, |run| write(run));
     let total = done.iter().map(|(e, _)| e.len()).sum();
     let mut elements = Vec::with_capacity(total);
     let mut extent = Aabb::EMPTY;

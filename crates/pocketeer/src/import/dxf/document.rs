@@ -4,53 +4,66 @@
 //! section ended, several ENTITIES sections, a missing EOF, unknown tables and objects) and strict
 //! where sloppiness would change the drawing (a file cut off inside its entities).
 
-use super::tokens::{Group, Groups, Value};
+use super::tokens::{Group, GroupList, Groups};
 use crate::import::error::{EntityRef, ImportError, Pos};
 use crate::import::ImportWarning;
+use std::borrow::Cow;
 use std::collections::HashMap;
 
-/// One entity as read: its type, its groups, and (for POLYLINE) its vertices.
+/// One entity as read: its type, its groups (a span of the file, read again when asked for),
+/// the groups every entity may have, and (for POLYLINE) its vertices.
 #[derive(Debug, Clone)]
-pub struct RawEntity {
+pub struct RawEntity<'a> {
     /// Entity type (`LINE`, `ARC`, ...), upper case.
-    pub kind: String,
+    pub kind: Cow<'a, str>,
     /// The groups after the `0` group.
-    pub groups: Vec<Group>,
+    pub body: Groups<'a>,
     /// Position of the `0` group.
     pub pos: Pos,
+    /// The first layer group (8).
+    layer: Option<Group<'a>>,
+    /// The first handle group (5).
+    handle: Option<Group<'a>>,
+    /// True for an entity in paper space (its first group 67 is 1).
+    paper_space: bool,
     /// VERTEX entities of a POLYLINE.
-    pub vertices: Vec<RawEntity>,
+    pub vertices: Vec<RawEntity<'a>>,
 }
 
-impl RawEntity {
+impl<'a> RawEntity<'a> {
+    /// The groups after the `0` group, in order.
+    pub fn groups(&self) -> impl Iterator<Item = Group<'a>> + '_ {
+        self.body.iter()
+    }
+
     /// The first group with `code`.
-    pub fn group(&self, code: i32) -> Option<&Group> {
-        self.groups.iter().find(|g| g.code == code)
+    pub fn group(&self, code: i32) -> Option<Group<'a>> {
+        self.groups().find(|g| g.code == code)
     }
 
     /// The first value of `code` as text.
     pub fn text(&self, code: i32) -> Option<String> {
-        self.group(code).map(Group::text)
+        self.group(code).map(|g| g.text())
     }
 
     /// Layer name (group 8), `0` when absent.
     pub fn layer(&self) -> String {
-        self.text(8)
-            .map(|s| s.trim().to_owned())
+        self.layer
+            .map(|g| g.text().trim().to_owned())
             .filter(|s| !s.is_empty())
             .unwrap_or_else(|| "0".into())
     }
 
     /// True for an entity in paper space (group 67 = 1).
     pub fn in_paper_space(&self) -> bool {
-        self.group(67).and_then(Group::int) == Some(1)
+        self.paper_space
     }
 
     /// A reference to this entity for messages, with the layer it is drawn on.
     pub fn reference(&self, layer: &str) -> EntityRef {
         EntityRef {
-            kind: self.kind.clone(),
-            handle: self.text(5).map(|h| h.trim().to_owned()),
+            kind: self.kind.clone().into_owned(),
+            handle: self.handle.map(|h| h.text().trim().to_owned()),
             layer: layer.to_owned(),
             pos: self.pos,
         }
@@ -59,85 +72,84 @@ impl RawEntity {
 
 /// A block definition.
 #[derive(Debug, Clone)]
-pub struct Block {
+pub struct Block<'a> {
     /// Name as written.
     pub name: String,
     /// Base point (x, y, z).
     pub base: [f64; 3],
     /// Entities of the block.
-    pub entities: Vec<RawEntity>,
+    pub entities: Vec<RawEntity<'a>>,
 }
 
-/// The parts of a DXF file the importer uses.
+/// The parts of a DXF file the importer uses, borrowing the file's bytes.
 #[derive(Debug, Default)]
-pub struct Document {
+pub struct Document<'a> {
     /// Header variables (`$INSUNITS`, ...) with their groups.
-    pub header: HashMap<String, Vec<Group>>,
+    pub header: HashMap<String, Vec<Group<'a>>>,
     /// Layer names from the LAYER table, in file order.
     pub layers: Vec<String>,
     /// Block definitions by upper-case name.
-    pub blocks: HashMap<String, Block>,
+    pub blocks: HashMap<String, Block<'a>>,
     /// Entities of the ENTITIES section(s), model and paper space.
-    pub entities: Vec<RawEntity>,
+    pub entities: Vec<RawEntity<'a>>,
     /// Remarks about the file's structure.
     pub warnings: Vec<ImportWarning>,
+    /// True for a binary DXF.
+    pub binary: bool,
 }
 
-impl Document {
+impl Document<'_> {
     /// The first value of header variable `name`.
-    pub fn header_value(&self, name: &str) -> Option<&Group> {
+    pub fn header_value(&self, name: &str) -> Option<&Group<'_>> {
         self.header.get(name).and_then(|g| g.first())
     }
 }
 
-/// A cursor over the groups, handing each one out by value (moved, not copied: a drawing's
-/// groups are most of the memory an import takes).
-struct Cursor {
-    groups: Vec<Group>,
+/// A cursor over the groups of the file.
+struct Cursor<'a> {
+    groups: Groups<'a>,
     at: usize,
 }
 
-impl Cursor {
-    fn peek(&self) -> Option<&Group> {
+impl<'a> Cursor<'a> {
+    fn peek(&self) -> Option<Group<'a>> {
         self.groups.get(self.at)
     }
-    fn next(&mut self) -> Option<Group> {
-        let slot = self.groups.get_mut(self.at)?;
+    fn next(&mut self) -> Option<Group<'a>> {
+        let g = self.groups.get(self.at)?;
         self.at += 1;
-        let placeholder = Group {
-            code: -1,
-            value: Value::Bytes,
-            pos: slot.pos,
-        };
-        Some(std::mem::replace(slot, placeholder))
+        Some(g)
     }
+    /// Position of the file's last group.
     fn last_pos(&self) -> Pos {
-        self.groups.last().map(|g| g.pos).unwrap_or(Pos::Line(1))
-    }
-    /// How many groups come before the next one with code 0.
-    fn until_next_zero(&self) -> usize {
-        let rest = self.groups.get(self.at..).unwrap_or_default();
-        rest.iter().position(|g| g.code == 0).unwrap_or(rest.len())
+        self.groups
+            .get(self.groups.len().wrapping_sub(1))
+            .map_or(Pos::Line(1), |g| g.pos)
     }
     /// Skips to the next group with code 0.
     fn skip_to_next_zero(&mut self) {
-        while let Some(g) = self.peek() {
-            if g.code == 0 {
-                break;
-            }
+        while self.groups.code(self.at).is_some_and(|c| c != 0) {
             self.at += 1;
         }
     }
 }
 
 /// Splits the groups of a file into header, layers, blocks and entities.
-pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
-    let mut doc = Document::default();
-    let saw_eof = read.saw_eof;
+pub fn parse_document<'a>(list: &'a GroupList<'a>) -> Result<Document<'a>, ImportError> {
     let mut cur = Cursor {
-        groups: read.groups,
+        groups: list.all(),
         at: 0,
     };
+    let mut doc = read_sections(&mut cur)?;
+    doc.binary = list.binary();
+    if !list.saw_eof() {
+        doc.warnings.push(ImportWarning::NoEofMarker);
+    }
+    Ok(doc)
+}
+
+fn read_sections<'a>(cur: &mut Cursor<'a>) -> Result<Document<'a>, ImportError> {
+    let mut doc = Document::default();
     let mut saw_section = false;
     while let Some(g) = cur.next() {
         if g.is(0, "EOF") {
@@ -145,7 +157,7 @@ pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
         }
         if g.code == 9 {
             // A header variable outside the HEADER section: some writers put one after ENDSEC.
-            read_header_variable(&mut cur, &g, &mut doc);
+            read_header_variable(cur, &g, &mut doc);
             continue;
         }
         if !g.is(0, "SECTION") {
@@ -160,15 +172,15 @@ pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
             String::new()
         };
         let closed = match name.as_str() {
-            "HEADER" => read_header(&mut cur, &mut doc),
-            "TABLES" => read_tables(&mut cur, &mut doc),
-            "BLOCKS" => read_blocks(&mut cur, &mut doc),
+            "HEADER" => read_header(cur, &mut doc),
+            "TABLES" => read_tables(cur, &mut doc),
+            "BLOCKS" => read_blocks(cur, &mut doc),
             "ENTITIES" => {
-                let (entities, closed) = read_entities(&mut cur, &["ENDSEC"]);
+                let (entities, closed) = read_entities(cur, &["ENDSEC"]);
                 doc.entities.extend(entities);
                 closed
             }
-            _ => skip_section(&mut cur),
+            _ => skip_section(cur),
         };
         if !closed {
             if matches!(name.as_str(), "ENTITIES" | "BLOCKS") {
@@ -186,13 +198,10 @@ pub fn parse_document(read: Groups) -> Result<Document, ImportError> {
             "no SECTION found: this is not a DXF drawing".into(),
         ));
     }
-    if !saw_eof {
-        doc.warnings.push(ImportWarning::NoEofMarker);
-    }
     Ok(doc)
 }
 
-fn read_header_variable(cur: &mut Cursor, name: &Group, doc: &mut Document) {
+fn read_header_variable<'a>(cur: &mut Cursor<'a>, name: &Group<'a>, doc: &mut Document<'a>) {
     let mut values = Vec::new();
     while let Some(g) = cur.peek() {
         if g.code == 0 || g.code == 9 {
@@ -204,7 +213,7 @@ fn read_header_variable(cur: &mut Cursor, name: &Group, doc: &mut Document) {
 }
 
 /// Reads to ENDSEC; false when the groups ran out first.
-fn read_header(cur: &mut Cursor, doc: &mut Document) -> bool {
+fn read_header<'a>(cur: &mut Cursor<'a>, doc: &mut Document<'a>) -> bool {
     while let Some(g) = cur.next() {
         if g.is(0, "ENDSEC") {
             return true;
@@ -216,7 +225,7 @@ fn read_header(cur: &mut Cursor, doc: &mut Document) -> bool {
     false
 }
 
-fn skip_section(cur: &mut Cursor) -> bool {
+fn skip_section(cur: &mut Cursor<'_>) -> bool {
     while let Some(g) = cur.next() {
         if g.is(0, "ENDSEC") {
             return true;
@@ -225,7 +234,7 @@ fn skip_section(cur: &mut Cursor) -> bool {
     false
 }
 
-fn read_tables(cur: &mut Cursor, doc: &mut Document) -> bool {
+fn read_tables(cur: &mut Cursor<'_>, doc: &mut Document<'_>) -> bool {
     while let Some(g) = cur.next() {
         if g.is(0, "ENDSEC") {
             return true;
@@ -248,7 +257,7 @@ fn read_tables(cur: &mut Cursor, doc: &mut Document) -> bool {
     false
 }
 
-fn read_blocks(cur: &mut Cursor, doc: &mut Document) -> bool {
+fn read_blocks<'a>(cur: &mut Cursor<'a>, doc: &mut Document<'a>) -> bool {
     while let Some(g) = cur.next() {
         if g.is(0, "ENDSEC") {
             return true;
@@ -285,15 +294,15 @@ fn read_blocks(cur: &mut Cursor, doc: &mut Document) -> bool {
 
 /// Reads entities until a `0` group whose value is one of `stop` (left unread). Returns false
 /// when the groups ran out first.
-fn read_entities(cur: &mut Cursor, stop: &[&str]) -> (Vec<RawEntity>, bool) {
-    let mut out: Vec<RawEntity> = Vec::new();
+fn read_entities<'a>(cur: &mut Cursor<'a>, stop: &[&str]) -> (Vec<RawEntity<'a>>, bool) {
+    let mut out: Vec<RawEntity<'a>> = Vec::new();
     while let Some(g) = cur.peek() {
         if g.code != 0 {
             cur.next(); // stray group between entities
             continue;
         }
-        let kind = g.text().trim().to_uppercase();
-        if stop.contains(&kind.as_str()) {
+        let kind = entity_kind(&g);
+        if stop.contains(&kind.as_ref()) {
             return (out, true);
         }
         if kind == "EOF" || kind == "SECTION" {
@@ -301,17 +310,27 @@ fn read_entities(cur: &mut Cursor, stop: &[&str]) -> (Vec<RawEntity>, bool) {
         }
         let pos = g.pos;
         cur.next();
-        // Sized once: a polyline of a hundred thousand vertices would otherwise be copied
-        // some twenty times as it grew.
-        let count = cur.until_next_zero();
-        let mut entity = RawEntity {
+        let from = cur.at;
+        let (mut layer, mut handle, mut paper) = (None, None, None);
+        while let Some(code) = cur.groups.code(cur.at).filter(|&c| c != 0) {
+            match code {
+                8 => layer = layer.or(cur.peek()),
+                5 => handle = handle.or(cur.peek()),
+                67 => paper = paper.or(cur.peek()),
+                _ => {}
+            }
+            cur.at += 1;
+        }
+        let entity = RawEntity {
             kind,
-            groups: Vec::with_capacity(count),
+            body: cur.groups.slice(from..cur.at),
             pos,
+            layer,
+            handle,
+            paper_space: paper.and_then(|g| g.int()) == Some(1),
             vertices: Vec::new(),
         };
-        entity.groups.extend((0..count).map_while(|_| cur.next()));
-        match entity.kind.as_str() {
+        match entity.kind.as_ref() {
             "VERTEX" => {
                 if let Some(poly) = out.last_mut().filter(|e| e.kind == "POLYLINE") {
                     poly.vertices.push(entity);
@@ -322,4 +341,22 @@ fn read_entities(cur: &mut Cursor, stop: &[&str]) -> (Vec<RawEntity>, bool) {
         }
     }
     (out, false)
+}
+
+/// The entity type a `0` group names, upper case: borrowed from the file when it is written
+/// so, as it nearly always is.
+fn entity_kind<'a>(g: &Group<'a>) -> Cow<'a, str> {
+    match g.value {
+        super::Value::Text(t) => match std::str::from_utf8(t) {
+            Ok(s)
+                if !s
+                    .bytes()
+                    .any(|b| b.is_ascii_lowercase() || !b.is_ascii() || b.is_ascii_whitespace()) =>
+            {
+                Cow::Borrowed(s)
+            }
+            _ => Cow::Owned(g.text().trim().to_uppercase()),
+        },
+        _ => Cow::Owned(g.text().trim().to_uppercase()),
+    }
 }

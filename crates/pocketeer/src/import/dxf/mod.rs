@@ -7,7 +7,8 @@
 //! not use (tables other than LAYER, objects, classes) without parsing it.
 
 pub mod document;
+mod number;
 pub mod tokens;
 
 pub use document::{parse_document, Block, Document, RawEntity};
-pub use tokens::{read_groups, Group, Groups, Value};
+pub use tokens::{Group, GroupList, Groups, Value};

@@ -1,15 +1,22 @@
-//! Group-code level reading of ASCII and binary DXF: bytes in, `(code, value)` pairs out.
+//! Group-code level reading of ASCII and binary DXF: bytes in, `(code, value)` pairs out, one at
+//! a time. A group borrows its value from the file's bytes: nothing is allocated per group, and
+//! a number is parsed only when someone asks for it (most groups of a drawing are skipped).
 
+use super::number;
 use crate::import::error::{ImportError, Pos};
+use std::borrow::Cow;
 
 /// The 22-byte sentinel that starts a binary DXF.
 const BINARY_SENTINEL: &[u8] = b"AutoCAD Binary DXF\r\n\x1a\0";
 
-/// A group value: text as written in an ASCII file, or typed as stored in a binary one.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Value {
-    /// Text (every value of an ASCII file, strings of a binary one).
-    Text(String),
+/// A group value: the text as written in an ASCII file (or a binary file's strings), or typed
+/// as stored in a binary file.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value<'a> {
+    /// Text, as bytes of the file: UTF-8, or a code page for older files (read as Latin-1).
+    /// Keywords and names (codes 0–9, 100 and 102) of an ASCII file come without the blanks
+    /// around them; other values as written (a text may begin with a blank).
+    Text(&'a [u8]),
     /// A floating-point number from a binary file.
     Real(f64),
     /// An integer from a binary file.
@@ -19,21 +26,21 @@ pub enum Value {
 }
 
 /// One group: a code and its value, with where it was read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Group {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Group<'a> {
     /// Group code.
     pub code: i32,
     /// Value.
-    pub value: Value,
+    pub value: Value<'a>,
     /// Position of the code in the file.
     pub pos: Pos,
 }
 
-impl Group {
+impl Group<'_> {
     /// The value as text (numbers are printed).
     pub fn text(&self) -> String {
         match &self.value {
-            Value::Text(s) => s.clone(),
+            Value::Text(s) => decode(s).into_owned(),
             Value::Real(x) => x.to_string(),
             Value::Int(i) => i.to_string(),
             Value::Bytes => String::new(),
@@ -42,13 +49,13 @@ impl Group {
 
     /// True when the value is the text `s` (case-sensitive, as DXF keywords are written).
     pub fn is(&self, code: i32, s: &str) -> bool {
-        self.code == code && matches!(&self.value, Value::Text(t) if t == s)
+        self.code == code && matches!(&self.value, Value::Text(t) if *t == s.as_bytes())
     }
 
     /// The value as a number: `None` when it is empty or not a number.
     pub fn real(&self) -> Option<f64> {
         match &self.value {
-            Value::Text(s) => s.trim().parse::<f64>().ok(),
+            Value::Text(s) => number::real(s),
             Value::Real(x) => Some(*x),
             Value::Int(i) => Some(*i as f64),
             Value::Bytes => None,
@@ -58,112 +65,290 @@ impl Group {
     /// The value as an integer: `None` when it is empty or not a number.
     pub fn int(&self) -> Option<i64> {
         match &self.value {
-            Value::Text(s) => {
-                let s = s.trim();
-                s.parse::<i64>().ok().or_else(|| {
-                    s.parse::<f64>()
-                        .ok()
-                        .filter(|x| x.fract() == 0.0 && x.abs() < 1e15)
-                        .map(|x| x as i64)
-                })
-            }
-            Value::Real(x) => (x.fract() == 0.0 && x.abs() < 1e15).then_some(*x as i64),
+            Value::Text(s) => number::int(s).or_else(|| number::real(s).and_then(whole)),
+            Value::Real(x) => whole(*x),
             Value::Int(i) => Some(*i),
             Value::Bytes => None,
         }
     }
 }
 
-/// The groups of a DXF file, and whether the `EOF` marker was reached.
-#[derive(Debug, Default)]
-pub struct Groups {
-    /// All groups up to `0 EOF` (or the end of the bytes).
-    pub groups: Vec<Group>,
-    /// True when `0 EOF` was read (anything after it is ignored).
-    pub saw_eof: bool,
+/// `x` as an integer when it is one (and small enough to be held exactly).
+fn whole(x: f64) -> Option<i64> {
+    (x.fract() == 0.0 && x.abs() < 1e15).then_some(x as i64)
+}
+
+/// Decodes text: UTF-8 when valid, otherwise Latin-1 (older DXF files use a code page).
+pub fn decode(text: &[u8]) -> Cow<'_, str> {
+    match std::str::from_utf8(text) {
+        Ok(s) => Cow::Borrowed(s),
+        Err(_) => Cow::Owned(text.iter().map(|&b| b as char).collect()),
+    }
+}
+
+/// How the groups are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    /// Two lines a group: the code, then the value.
+    Ascii,
+    /// Binary, with two-byte group codes (`wide`, R13 and later) or one-byte ones (R12).
+    Binary { wide: bool },
+}
+
+/// Where the next group starts: its byte offset, and for an ASCII file the line of its code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Mark {
+    at: usize,
+    line: usize,
+}
+
+/// The groups of a DXF file, read one at a time; after an error or `0 EOF`, nothing more.
+#[derive(Debug, Clone)]
+pub struct Tokens<'a> {
+    /// The file's bytes, up to where reading stops.
+    bytes: &'a [u8],
+    format: Format,
+    next: Mark,
+    /// Where the value of the last binary group starts.
+    value_at: usize,
+    /// Groups handed out so far.
+    count: usize,
+    done: bool,
+    saw_eof: bool,
+}
+
+impl<'a> Tokens<'a> {
+    /// A reader of `bytes`, a whole ASCII or binary DXF file. Refuses, before reading a group,
+    /// text with binary data in it.
+    pub fn new(bytes: &'a [u8]) -> Result<Tokens<'a>, ImportError> {
+        if bytes.starts_with(BINARY_SENTINEL) {
+            // R12 binary files write one-byte group codes (255 escapes a two-byte code); later
+            // versions write two bytes. The first group is `0 SECTION`: a zero second byte
+            // means two-byte codes.
+            let at = BINARY_SENTINEL.len();
+            let wide = bytes.get(at + 1) == Some(&0);
+            return Ok(Tokens::resume(
+                bytes,
+                Format::Binary { wide },
+                Mark { at, line: 0 },
+            ));
+        }
+        let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        if memchr::memchr(0, body).is_some() {
+            return Err(ImportError::NotDxf(
+                "the file contains binary data but no binary DXF header".into(),
+            ));
+        }
+        let at = bytes.len() - body.len();
+        Ok(Tokens::resume(bytes, Format::Ascii, Mark { at, line: 1 }))
+    }
+
+    fn resume(bytes: &'a [u8], format: Format, next: Mark) -> Tokens<'a> {
+        Tokens {
+            bytes,
+            format,
+            next,
+            value_at: 0,
+            count: 0,
+            done: false,
+            saw_eof: false,
+        }
+    }
+
     /// True for a binary DXF.
-    pub binary: bool,
-}
-
-/// Reads the group codes of an ASCII or binary DXF.
-pub fn read_groups(bytes: &[u8]) -> Result<Groups, ImportError> {
-    if bytes.starts_with(BINARY_SENTINEL) {
-        read_binary(bytes)
-    } else {
-        read_ascii(bytes)
+    pub fn binary(&self) -> bool {
+        matches!(self.format, Format::Binary { .. })
     }
-}
 
-/// Decodes a line: UTF-8 when valid, otherwise Latin-1 (older DXF files use a code page).
-fn decode(line: &[u8]) -> String {
-    match std::str::from_utf8(line) {
-        Ok(s) => s.to_owned(),
-        Err(_) => line.iter().map(|&b| b as char).collect(),
+    /// True once `0 EOF` has been read.
+    pub fn saw_eof(&self) -> bool {
+        self.saw_eof
     }
-}
 
-fn read_ascii(bytes: &[u8]) -> Result<Groups, ImportError> {
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
-    if bytes.contains(&0) {
-        return Err(ImportError::NotDxf(
-            "the file contains binary data but no binary DXF header".into(),
-        ));
-    }
-    // Two lines a group: sized once, not regrown (a regrowth copies every group read so far).
-    let line_count = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
-    let mut out = Groups {
-        groups: Vec::with_capacity(line_count / 2 + 1),
-        ..Groups::default()
-    };
-    let mut lines = bytes
-        .split(|&b| b == b'\n')
-        .map(|l| l.strip_suffix(b"\r").unwrap_or(l))
-        .enumerate();
-    while let Some((i, code_line)) = lines.next() {
-        let code_trim = code_line.trim_ascii();
-        if code_trim.is_empty() {
-            // Blank lines before the first group or at the very end are harmless.
-            if out.groups.is_empty() {
-                continue;
+    /// The next group, `None` at the end (of the bytes, or after `0 EOF`).
+    pub fn next_group(&mut self) -> Result<Option<Group<'a>>, ImportError> {
+        if self.done {
+            return Ok(None);
+        }
+        let read = match self.format {
+            Format::Ascii => self.next_ascii(),
+            Format::Binary { wide } => self.next_binary(wide),
+        };
+        match read {
+            Ok(Some(g)) => {
+                self.count += 1;
+                if g.is(0, "EOF") {
+                    self.saw_eof = true;
+                    self.done = true;
+                }
+                Ok(Some(g))
             }
-            if lines.clone().all(|(_, l)| l.iter().all(u8::is_ascii_whitespace)) {
-                break;
+            Ok(None) => {
+                self.done = true;
+                if self.count == 0 {
+                    return Err(ImportError::NotDxf("the file is empty".into()));
+                }
+                Ok(None)
+            }
+            Err(e) => {
+                self.done = true;
+                Err(e)
             }
         }
-        let Some(code) = group_code(code_trim) else {
-            let shown: String = decode(code_trim).chars().take(40).collect();
-            if out.groups.is_empty() {
-                return Err(ImportError::NotDxf(format!(
-                    "line 1 should be a group code, found '{shown}'"
-                )));
+    }
+
+    /// The next line of an ASCII file without its line break, `None` at the end of the bytes.
+    fn line(&mut self) -> Option<&'a [u8]> {
+        // Past the end once the last line (empty after a final line break) has been read.
+        let rest = self.bytes.get(self.next.at..)?;
+        let line = match line_break(rest) {
+            Some(n) => {
+                self.next.at += n + 1;
+                &rest[..n]
             }
-            return Err(ImportError::Syntax {
-                pos: Pos::Line(i + 1),
-                what: format!("expected a group code, found '{shown}'"),
-            });
+            None => {
+                self.next.at = self.bytes.len() + 1;
+                rest
+            }
         };
-        let Some((_, value_line)) = lines.next() else {
-            return Err(ImportError::Syntax {
-                pos: Pos::Line(i + 1),
-                what: format!("group code {code} has no value: the file ends here"),
-            });
+        self.next.line += 1;
+        Some(line.strip_suffix(b"\r").unwrap_or(line))
+    }
+
+    fn next_ascii(&mut self) -> Result<Option<Group<'a>>, ImportError> {
+        loop {
+            let line_no = self.next.line;
+            let Some(code_line) = self.line() else {
+                return Ok(None);
+            };
+            let code_text = code_line.trim_ascii();
+            if code_text.is_empty() {
+                // Blank lines before the first group or at the very end are harmless.
+                if self.count == 0 {
+                    continue;
+                }
+                let rest = self.bytes.get(self.next.at..).unwrap_or_default();
+                if rest.iter().all(u8::is_ascii_whitespace) {
+                    return Ok(None);
+                }
+            }
+            let Some(code) = group_code(code_text) else {
+                let shown: String = decode(code_text).chars().take(40).collect();
+                if self.count == 0 {
+                    return Err(ImportError::NotDxf(format!(
+                        "line 1 should be a group code, found '{shown}'"
+                    )));
+                }
+                return Err(ImportError::Syntax {
+                    pos: Pos::Line(line_no),
+                    what: format!("expected a group code, found '{shown}'"),
+                });
+            };
+            let Some(value_line) = self.line() else {
+                return Err(ImportError::Syntax {
+                    pos: Pos::Line(line_no),
+                    what: format!("group code {code} has no value: the file ends here"),
+                });
+            };
+            // Keywords and names: surrounding blanks are never meaningful.
+            let keyword = (0..=9).contains(&code) || code == 100 || code == 102;
+            let value = if keyword {
+                value_line.trim_ascii()
+            } else {
+                value_line
+            };
+            return Ok(Some(Group {
+                code,
+                value: Value::Text(value),
+                pos: Pos::Line(line_no),
+            }));
+        }
+    }
+
+    fn next_binary(&mut self, wide: bool) -> Result<Option<Group<'a>>, ImportError> {
+        let bytes = self.bytes;
+        let start = self.next.at;
+        if start >= bytes.len() {
+            return Ok(None);
+        }
+        let truncated = |pos: usize| ImportError::Syntax {
+            pos: Pos::Byte(pos),
+            what: "the binary file ends inside a group".into(),
         };
-        let g = Group {
+        let mut at = start;
+        let take = |at: &mut usize, n: usize| -> Result<&'a [u8], ImportError> {
+            let s = bytes.get(*at..*at + n).ok_or_else(|| truncated(*at))?;
+            *at += n;
+            Ok(s)
+        };
+        let code = if wide {
+            let b = take(&mut at, 2)?;
+            i16::from_le_bytes([b[0], b[1]]) as i32
+        } else {
+            let b = take(&mut at, 1)?[0];
+            if b == 255 {
+                let b = take(&mut at, 2)?;
+                i16::from_le_bytes([b[0], b[1]]) as i32
+            } else {
+                b as i32
+            }
+        };
+        self.value_at = at;
+        let value = match kind_of(code) {
+            Kind::Text => {
+                let rest = bytes.get(at..).unwrap_or_default();
+                let n = memchr::memchr(0, rest).ok_or_else(|| truncated(start))?;
+                take(&mut at, n + 1)?;
+                Value::Text(&rest[..n])
+            }
+            Kind::Real => Value::Real(f64::from_le_bytes(array(take(&mut at, 8)?))),
+            Kind::I8 => Value::Int(take(&mut at, 1)?[0] as i64),
+            Kind::I16 => Value::Int(i16::from_le_bytes(array(take(&mut at, 2)?)) as i64),
+            Kind::I32 => Value::Int(i32::from_le_bytes(array(take(&mut at, 4)?)) as i64),
+            Kind::I64 => Value::Int(i64::from_le_bytes(array(take(&mut at, 8)?))),
+            Kind::Bytes => {
+                let n = take(&mut at, 1)?[0] as usize;
+                take(&mut at, n)?;
+                Value::Bytes
+            }
+        };
+        self.next.at = at;
+        Ok(Some(Group {
             code,
-            value: ascii_value(code, value_line),
-            pos: Pos::Line(i + 1),
-        };
-        let eof = g.is(0, "EOF");
-        out.groups.push(g);
-        if eof {
-            out.saw_eof = true;
-            break;
+            value,
+            pos: Pos::Byte(start),
+        }))
+    }
+}
+
+/// Where the first line break of `bytes` is. A DXF line is a few bytes long, too short for a
+/// vector search to pay for its set-up: eight bytes at a time are tested in a word, by the
+/// borrow trick (the lowest byte flagged is exactly the first zero byte of `word ^ '\n'`).
+fn line_break(bytes: &[u8]) -> Option<usize> {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGHS: u64 = 0x8080_8080_8080_8080;
+    let mut at = 0;
+    while let Some(chunk) = bytes.get(at..at + 8) {
+        let word = u64::from_le_bytes(array(chunk)) ^ (ONES * u64::from(b'\n'));
+        let zeros = word.wrapping_sub(ONES) & !word & HIGHS;
+        if zeros != 0 {
+            return Some(at + (zeros.trailing_zeros() / 8) as usize);
+        }
+        at += 8;
+        if at >= 64 {
+            // A long line (a text): the vector search pays now.
+            return memchr::memchr(b'\n', &bytes[at..]).map(|n| at + n);
         }
     }
-    if out.groups.is_empty() {
-        return Err(ImportError::NotDxf("the file is empty".into()));
-    }
-    Ok(out)
+    bytes[at..].iter().position(|&b| b == b'\n').map(|n| at + n)
+}
+
+/// The first `N` bytes of `b`, which has `N` (zeros where it has fewer).
+fn array<const N: usize>(b: &[u8]) -> [u8; N] {
+    let mut a = [0u8; N];
+    let n = b.len().min(N);
+    a[..n].copy_from_slice(&b[..n]);
+    a
 }
 
 /// A group code as written on its line (blanks trimmed): an optional sign and decimal digits
@@ -190,33 +375,6 @@ fn group_code(text: &[u8]) -> Option<i32> {
     i32::try_from(if negative { -value } else { value }).ok()
 }
 
-/// The value of an ASCII group: numbers of the codes that hold them are stored as numbers
-/// (a drawing of a million lines holds millions of them, and a string each would cost several
-/// times the file's size), everything else as text.
-fn ascii_value(code: i32, line: &[u8]) -> Value {
-    let number = std::str::from_utf8(line).ok().map(str::trim);
-    match (kind_of(code), number) {
-        (Kind::Real, Some(t)) => {
-            if let Ok(x) = t.parse::<f64>() {
-                return Value::Real(x);
-            }
-        }
-        (Kind::I16 | Kind::I32 | Kind::I64 | Kind::I8, Some(t)) => {
-            if let Ok(i) = t.parse::<i64>() {
-                return Value::Int(i);
-            }
-        }
-        _ => {}
-    }
-    let value = decode(line);
-    if (0..=9).contains(&code) || code == 100 || code == 102 {
-        // Keywords and names: surrounding blanks are never meaningful.
-        Value::Text(value.trim().to_owned())
-    } else {
-        Value::Text(value)
-    }
-}
-
 /// Storage class of a group code's value in a binary DXF.
 enum Kind {
     Text,
@@ -240,89 +398,175 @@ fn kind_of(code: i32) -> Kind {
     }
 }
 
-fn read_binary(bytes: &[u8]) -> Result<Groups, ImportError> {
-    let mut out = Groups {
-        binary: true,
-        ..Groups::default()
-    };
-    let mut at = BINARY_SENTINEL.len();
-    // R12 binary files write one-byte group codes (255 escapes a two-byte code); later versions
-    // write two bytes. The first group is `0 SECTION`: a zero second byte means two-byte codes.
-    let wide = bytes.get(at + 1) == Some(&0);
-    let truncated = |pos: usize| ImportError::Syntax {
-        pos: Pos::Byte(pos),
-        what: "the binary file ends inside a group".into(),
-    };
-    let take = |at: &mut usize, n: usize| -> Result<&[u8], ImportError> {
-        let s = bytes.get(*at..*at + n).ok_or_else(|| truncated(*at))?;
-        *at += n;
-        Ok(s)
-    };
-    while at < bytes.len() {
-        let start = at;
-        let code = if wide {
-            let b = take(&mut at, 2)?;
-            i16::from_le_bytes([b[0], b[1]]) as i32
-        } else {
-            let b = take(&mut at, 1)?[0];
-            if b == 255 {
-                let b = take(&mut at, 2)?;
-                i16::from_le_bytes([b[0], b[1]]) as i32
-            } else {
-                b as i32
-            }
-        };
-        let value = match kind_of(code) {
-            Kind::Text => {
-                let rest = bytes.get(at..).unwrap_or_default();
-                let n = rest
-                    .iter()
-                    .position(|&b| b == 0)
-                    .ok_or_else(|| truncated(start))?;
-                let s = decode(&rest[..n]);
-                at += n + 1;
-                Value::Text(s)
-            }
-            Kind::Real => {
-                let b = take(&mut at, 8)?;
-                let mut a = [0u8; 8];
-                a.copy_from_slice(b);
-                Value::Real(f64::from_le_bytes(a))
-            }
-            Kind::I8 => Value::Int(take(&mut at, 1)?[0] as i64),
-            Kind::I16 => {
-                let b = take(&mut at, 2)?;
-                Value::Int(i16::from_le_bytes([b[0], b[1]]) as i64)
-            }
-            Kind::I32 => {
-                let b = take(&mut at, 4)?;
-                Value::Int(i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as i64)
-            }
-            Kind::I64 => {
-                let b = take(&mut at, 8)?;
-                let mut a = [0u8; 8];
-                a.copy_from_slice(b);
-                Value::Int(i64::from_le_bytes(a))
-            }
-            Kind::Bytes => {
-                let n = take(&mut at, 1)?[0] as usize;
-                take(&mut at, n)?;
-                Value::Bytes
-            }
-        };
-        let g = Group {
-            code,
-            value,
-            pos: Pos::Byte(start),
-        };
-        let eof = g.is(0, "EOF");
-        out.groups.push(g);
-        if eof {
-            out.saw_eof = true;
-            break;
+/// A group as the list of a file's groups holds it: its code and where its value and its code
+/// are in the file, without the value itself (16 bytes, where a drawing's text spends about 12
+/// a group).
+#[derive(Debug, Clone, Copy)]
+struct Packed {
+    code: i32,
+    /// Byte offset of the value.
+    value: u32,
+    /// Length of the value in bytes.
+    len: u32,
+    /// The line of the code (ASCII) or its byte offset (binary).
+    pos: u32,
+}
+
+/// Every group of a DXF file up to `0 EOF`, read in one pass: what the document reader walks
+/// through, and what an entity's groups are a slice of.
+#[derive(Debug)]
+pub struct GroupList<'a> {
+    bytes: &'a [u8],
+    binary: bool,
+    saw_eof: bool,
+    packed: Vec<Packed>,
+}
+
+/// Largest file read: positions are held in 32 bits.
+pub const MAX_FILE_BYTES: usize = u32::MAX as usize;
+
+impl<'a> GroupList<'a> {
+    /// Reads every group of `bytes`, an ASCII or binary DXF file.
+    pub fn read(bytes: &'a [u8]) -> Result<GroupList<'a>, ImportError> {
+        if bytes.len() > MAX_FILE_BYTES {
+            return Err(ImportError::NotDxf(format!(
+                "the file is {} bytes long; at most {MAX_FILE_BYTES} are read",
+                bytes.len()
+            )));
+        }
+        let mut tokens = Tokens::new(bytes)?;
+        let offset = |s: &[u8]| (s.as_ptr() as usize - bytes.as_ptr() as usize) as u32;
+        // A group takes at least four bytes of an ASCII file (two of a binary one).
+        let mut packed = Vec::with_capacity(bytes.len() / 12);
+        while let Some(g) = tokens.next_group()? {
+            let (value, len) = match g.value {
+                Value::Text(t) => (offset(t), t.len() as u32),
+                // Binary numbers: where the value starts (after the code) and its width.
+                _ => (tokens.value_at as u32, (tokens.next.at - tokens.value_at) as u32),
+            };
+            let pos = match g.pos {
+                Pos::Line(n) | Pos::Byte(n) => n as u32,
+            };
+            packed.push(Packed {
+                code: g.code,
+                value,
+                len,
+                pos,
+            });
+        }
+        Ok(GroupList {
+            bytes,
+            binary: tokens.binary(),
+            saw_eof: tokens.saw_eof(),
+            packed,
+        })
+    }
+
+    /// True for a binary DXF.
+    pub fn binary(&self) -> bool {
+        self.binary
+    }
+
+    /// True when `0 EOF` was read (anything after it is ignored).
+    pub fn saw_eof(&self) -> bool {
+        self.saw_eof
+    }
+
+    /// Every group.
+    pub fn all(&self) -> Groups<'_> {
+        Groups {
+            bytes: self.bytes,
+            binary: self.binary,
+            packed: &self.packed,
         }
     }
-    Ok(out)
+}
+
+/// A run of groups of a file (all of them, or an entity's): a slice of its [`GroupList`].
+#[derive(Debug, Clone, Copy)]
+pub struct Groups<'a> {
+    bytes: &'a [u8],
+    binary: bool,
+    packed: &'a [Packed],
+}
+
+impl<'a> Groups<'a> {
+    /// No groups.
+    pub const EMPTY: Groups<'static> = Groups {
+        bytes: &[],
+        binary: false,
+        packed: &[],
+    };
+
+    /// How many groups.
+    pub fn len(&self) -> usize {
+        self.packed.len()
+    }
+
+    /// True when there is none.
+    pub fn is_empty(&self) -> bool {
+        self.packed.is_empty()
+    }
+
+    /// The code of group `i`, without reading its value.
+    pub fn code(&self, i: usize) -> Option<i32> {
+        self.packed.get(i).map(|p| p.code)
+    }
+
+    /// Group `i`.
+    pub fn get(&self, i: usize) -> Option<Group<'a>> {
+        self.packed.get(i).map(|p| self.unpack(p))
+    }
+
+    /// Groups `range` of these.
+    pub fn slice(&self, range: std::ops::Range<usize>) -> Groups<'a> {
+        Groups {
+            packed: self.packed.get(range).unwrap_or_default(),
+            ..*self
+        }
+    }
+
+    /// The groups, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Group<'a>> + '_ {
+        self.packed.iter().map(|p| self.unpack(p))
+    }
+
+    fn unpack(&self, p: &Packed) -> Group<'a> {
+        let (from, to) = (p.value as usize, p.value as usize + p.len as usize);
+        let raw = self.bytes.get(from..to).unwrap_or_default();
+        if !self.binary {
+            return Group {
+                code: p.code,
+                value: Value::Text(raw),
+                pos: Pos::Line(p.pos as usize),
+            };
+        }
+        let value = match kind_of(p.code) {
+            Kind::Text => Value::Text(raw),
+            Kind::Real => Value::Real(f64::from_le_bytes(array(raw))),
+            Kind::I8 => Value::Int(raw.first().copied().unwrap_or(0) as i64),
+            Kind::I16 => Value::Int(i16::from_le_bytes(array(raw)) as i64),
+            Kind::I32 => Value::Int(i32::from_le_bytes(array(raw)) as i64),
+            Kind::I64 => Value::Int(i64::from_le_bytes(array(raw))),
+            Kind::Bytes => Value::Bytes,
+        };
+        Group {
+            code: p.code,
+            value,
+            pos: Pos::Byte(p.pos as usize),
+        }
+    }
+}
+
+/// Every group of `bytes` as the reader hands them out, and the reader after them: for tests.
+#[cfg(test)]
+fn read_all(bytes: &[u8]) -> Result<(Vec<Group<'_>>, Tokens<'_>), ImportError> {
+    let mut tokens = Tokens::new(bytes)?;
+    let mut groups = Vec::new();
+    while let Some(g) = tokens.next_group()? {
+        groups.push(g);
+    }
+    Ok((groups, tokens))
 }
 
 #[cfg(test)]
@@ -331,12 +575,84 @@ mod tests {
 
     #[test]
     fn ascii_groups_with_crlf_and_padding() {
-        let g =
-            read_groups(b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n 10\r\n 1.5 \r\n  0\r\nEOF\r\ntrash").unwrap();
-        assert!(g.saw_eof);
-        assert_eq!(g.groups.len(), 4);
-        assert_eq!(g.groups[2].real(), Some(1.5));
-        assert_eq!(g.groups[2].pos, Pos::Line(5));
+        let (g, t) =
+            read_all(b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n 10\r\n 1.5 \r\n  0\r\nEOF\r\ntrash").unwrap();
+        assert!(t.saw_eof());
+        assert_eq!(g.len(), 4);
+        assert!(g[1].is(2, "ENTITIES"));
+        assert_eq!(g[2].real(), Some(1.5));
+        assert_eq!(g[2].pos, Pos::Line(5));
+    }
+
+    #[test]
+    fn blank_lines_lead_and_trail_but_do_not_interrupt() {
+        let (g, t) = read_all(b"\n\n  0\nSECTION\n  0\nENDSEC\n\n  \n").unwrap();
+        assert!(!t.saw_eof());
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0].pos, Pos::Line(3));
+        let e = read_all(b"  0\nSECTION\n\n  0\nENDSEC\n").unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ImportError::Syntax {
+                    pos: Pos::Line(3),
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        // A last group without a line break after its value, and a code without a value.
+        let (g, _) = read_all(b"0\nSECTION\n0\nEOF").unwrap();
+        assert!(g[1].is(0, "EOF"));
+        let e = read_all(b"0\nSECTION\n10").unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ImportError::Syntax {
+                    pos: Pos::Line(3),
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        // An empty value on the last line is a value.
+        let (g, _) = read_all(b"0\nSECTION\n1\n").unwrap();
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[1].text(), "");
+    }
+
+    #[test]
+    fn the_list_gives_back_what_was_read() {
+        let text = b"0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nA\n10\n1\n0\nEOF\n";
+        let (read, _) = read_all(text).unwrap();
+        let list = GroupList::read(text).unwrap();
+        assert!(list.saw_eof() && !list.binary());
+        assert_eq!(list.all().iter().collect::<Vec<_>>(), read);
+        let line = list.all().slice(3..5);
+        assert_eq!(line.len(), 2);
+        assert_eq!(line.get(0).map(|g| g.pos), Some(Pos::Line(7)));
+        assert_eq!(line.get(1).and_then(|g| g.real()), Some(1.0));
+    }
+
+    #[test]
+    fn line_breaks_are_found_where_they_are() {
+        for len in 0..150 {
+            for at in 0..=len {
+                let mut bytes = vec![b'x'; len];
+                let expected = (at < len).then(|| {
+                    bytes[at] = b'\n';
+                    at
+                });
+                // Bytes next to a line break in value (0x0a ± 1, 0x8a) flag nothing.
+                if at + 1 < len {
+                    bytes[at + 1] = 0x0b;
+                }
+                if at > 0 {
+                    bytes[at - 1] = 0x8a;
+                }
+                assert_eq!(line_break(&bytes), expected, "{len} {at}");
+            }
+        }
     }
 
     #[test]
@@ -360,16 +676,15 @@ mod tests {
 
     #[test]
     fn empty_number_is_none_not_an_error() {
-        let g = read_groups(b"  0\nSECTION\n 70\n\n  0\nEOF\n").unwrap();
-        assert_eq!(g.groups[1].int(), None);
+        let (g, _) = read_all(b"  0\nSECTION\n 70\n\n  0\nEOF\n").unwrap();
+        assert_eq!(g[1].int(), None);
     }
 
     #[test]
     fn text_is_not_dxf() {
-        assert!(matches!(
-            read_groups(b"hello world\n"),
-            Err(ImportError::NotDxf(_))
-        ));
-        assert!(matches!(read_groups(b""), Err(ImportError::NotDxf(_))));
+        assert!(matches!(read_all(b"hello world\n"), Err(ImportError::NotDxf(_))));
+        assert!(matches!(read_all(b""), Err(ImportError::NotDxf(_))));
+        assert!(matches!(read_all(b"\n \n"), Err(ImportError::NotDxf(_))));
+        assert!(matches!(read_all(b"0\nSECTION\0"), Err(ImportError::NotDxf(_))));
     }
 }
