@@ -469,46 +469,47 @@ impl Curve {
         bad.map_or(Ok(()), Err)
     }
 
-    /// True for a curve that becomes biarcs (an ellipse or a spline), false for one that is a
-    /// line or an arc already.
-    pub fn needs_fitting(&self) -> bool {
-        match self {
-            Curve::Line(..) | Curve::Arc(_) => false,
-            Curve::Ellipse(e) => e.as_circular().is_none(),
-            Curve::Spline(_) => true,
-        }
+    /// The curve as its one line or arc, when it is one (an arc that strays less than
+    /// [`FLAT_ARC`] from its chord is a line); `None` for an ellipse or a spline, which
+    /// [`Curve::to_segments`] fits with biarcs.
+    pub fn exact(&self) -> Option<Segment> {
+        let arc = match self {
+            Curve::Line(a, b) => return Some(Segment::Line(Line::new(*a, *b))),
+            Curve::Arc(arc) => *arc,
+            Curve::Ellipse(e) => e.as_circular()?,
+            Curve::Spline(_) => return None,
+        };
+        Some(if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() {
+            Segment::Line(Line::new(arc.start(), arc.end()))
+        } else {
+            Segment::Arc(arc)
+        })
     }
 
     /// The curve as exact lines and arcs: lines and circular arcs as they are, ellipses and
     /// splines as biarcs within `tolerance`.
     pub fn to_segments(&self, tolerance: f64, out: &mut Vec<Segment>) {
+        if let Some(segment) = self.exact() {
+            out.push(segment);
+            return;
+        }
         match self {
-            Curve::Line(a, b) => out.push(Segment::Line(Line::new(*a, *b))),
-            Curve::Arc(arc) if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() => {
-                out.push(Segment::Line(Line::new(arc.start(), arc.end())))
+            Curve::Ellipse(e) => {
+                // Split at quarter turns so that no piece holds an inflection of its tangent.
+                let pieces = (e.sweep.abs() / (std::f64::consts::PI / 2.0)).ceil().max(1.0) as usize;
+                for i in 0..pieces {
+                    let a = e.t0 + e.sweep * i as f64 / pieces as f64;
+                    let b = e.t0 + e.sweep * (i + 1) as f64 / pieces as f64;
+                    super::biarc::fit(e, a, b, tolerance, out);
+                }
             }
-            Curve::Arc(arc) => out.push(Segment::Arc(*arc)),
-            Curve::Ellipse(e) => match e.as_circular() {
-                Some(arc) if arc.sagitta() < FLAT_ARC && !arc.is_full_circle() => {
-                    out.push(Segment::Line(Line::new(arc.start(), arc.end())))
-                }
-                Some(arc) => out.push(Segment::Arc(arc)),
-                None => {
-                    // Split at quarter turns so that no piece holds an inflection of its tangent.
-                    let pieces = (e.sweep.abs() / (std::f64::consts::PI / 2.0)).ceil().max(1.0) as usize;
-                    for i in 0..pieces {
-                        let a = e.t0 + e.sweep * i as f64 / pieces as f64;
-                        let b = e.t0 + e.sweep * (i + 1) as f64 / pieces as f64;
-                        super::biarc::fit(e, a, b, tolerance, out);
-                    }
-                }
-            },
             Curve::Spline(s) => {
                 for run in SpanRun::runs(s) {
                     let (a, b) = run.domain();
                     super::biarc::fit(&run, a, b, tolerance, out);
                 }
             }
+            Curve::Line(..) | Curve::Arc(_) => {}
         }
     }
 }

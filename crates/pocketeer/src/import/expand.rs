@@ -1,10 +1,11 @@
 //! Model space with every block insertion expanded: each drawn curve in world coordinates, with
-//! the layer it is drawn on and the entity it comes from.
+//! the layer it is drawn on and the entity it comes from, placed as elements.
 
-use super::curve::{ocs_to_world, Affine, Curve};
+use super::curve::{ocs_to_world, Affine};
 use super::dxf::{Document, RawEntity};
 use super::entities::{curves_of, Drawn, Fields};
 use super::error::{EntityRef, ImportError};
+use super::placement::Elements;
 use crate::geom::Vector;
 use crate::import::ImportWarning;
 
@@ -13,30 +14,25 @@ const MAX_NESTING: usize = 64;
 /// Most curves block insertions may produce (guards against exponential nesting).
 pub const MAX_CURVES: usize = 2_000_000;
 
-/// One curve of the drawing in world coordinates (millimetres once the root map scales to them).
-pub struct Placed {
-    /// The curve.
-    pub curve: Curve,
-    /// Index into [`Expander::sources`]: the entity placement it was drawn by, with the layer
-    /// it is drawn on (one for all the curves of a polyline: a hundred thousand vertices are
-    /// not a hundred thousand copies of its name and layer).
-    pub source: usize,
-    /// For the curves of one closed polyline (one placement of it): a number shared by them,
-    /// which are a contour by themselves, in order.
-    pub closed_group: Option<usize>,
-}
-
-/// Walks model space, expanding INSERTs, and collects every curve.
+/// Walks model space, expanding INSERTs, and places every curve.
 pub struct Expander<'a, 'b> {
     doc: &'a Document<'b>,
-    /// Curves found.
-    pub placed: Vec<Placed>,
+    /// The elements of the curves found on the layers kept.
+    pub elements: Elements,
     /// The entity of each placement that drew curves (inside blocks, the innermost one), for
     /// messages; its layer is the one drawn on (block entities on layer 0 take the layer of
-    /// their INSERT).
+    /// their INSERT). One for all the curves of a polyline: a hundred thousand vertices are not
+    /// a hundred thousand copies of its name and layer.
     pub sources: Vec<EntityRef>,
+    /// Every layer name: the LAYER table's, then those drawn on but not declared, in the order
+    /// they are first drawn on.
+    pub layers: Vec<String>,
     /// Remarks (unknown blocks).
     pub warnings: Vec<ImportWarning>,
+    /// The layers to keep (all when `None`).
+    keep: Option<&'a [String]>,
+    /// Curves placed, on every layer.
+    curves: usize,
     stack: Vec<String>,
     groups: usize,
     /// Entities each block expands to (memo of [`Expander::expanded_size`]).
@@ -44,17 +40,36 @@ pub struct Expander<'a, 'b> {
 }
 
 impl<'a, 'b> Expander<'a, 'b> {
-    /// An expander over `doc`.
-    pub fn new(doc: &'a Document<'b>) -> Self {
+    /// An expander over `doc` that keeps the curves on the layers `keep` (all when `None`).
+    pub fn new(doc: &'a Document<'b>, keep: Option<&'a [String]>) -> Self {
         Expander {
             doc,
-            placed: Vec::new(),
+            elements: Elements::new(),
             sources: Vec::new(),
+            layers: doc.layers.clone(),
             warnings: Vec::new(),
+            keep,
+            curves: 0,
             stack: Vec::new(),
             groups: 0,
             sizes: std::collections::HashMap::new(),
         }
+    }
+
+    /// The index of layer `name` in [`Expander::layers`], added when new; `None` when its
+    /// curves are not kept.
+    fn layer_index(&mut self, name: &str) -> Option<usize> {
+        let index = match self.layers.iter().position(|l| l.eq_ignore_ascii_case(name)) {
+            Some(i) => i,
+            None => {
+                self.layers.push(name.to_owned());
+                self.layers.len() - 1
+            }
+        };
+        let kept = self
+            .keep
+            .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(name)));
+        kept.then_some(index)
     }
 
     /// Adds the curves of `entities`, drawn in a space that `m` maps to world coordinates.
@@ -75,40 +90,54 @@ impl<'a, 'b> Expander<'a, 'b> {
                 self.insert(e, m, &layer)?;
                 continue;
             }
-            // Curves go straight into `placed` (a polyline of a million vertices is not
-            // first a list of its own), then are given their group and checked.
-            let first = self.placed.len();
+            // Curves are placed as they are read (a polyline of a million vertices is not
+            // first a list of its own), on the layer its entity is drawn on if that is kept.
+            let mark = self.elements.mark();
             let source = self.sources.len();
-            let placed = &mut self.placed;
+            let (mut layer_index, mut known) = (None, false);
+            let mut count = 0;
+            let mut bad = None;
             let drawn = curves_of(e, &mut |c| {
-                placed.push(Placed {
-                    curve: c.transformed(m),
-                    source,
-                    closed_group: None,
-                })
+                let curve = c.transformed(m);
+                count += 1;
+                if bad.is_some() {
+                    return;
+                }
+                if let Err(p) = curve.check_coordinates(super::MAX_COORDINATE) {
+                    bad = Some(p);
+                    return;
+                }
+                if !known {
+                    layer_index = self.layer_index(&layer);
+                    known = true;
+                }
+                if let Some(layer) = layer_index {
+                    self.elements.push(curve, layer, source);
+                }
             });
             match drawn {
                 Ok(Drawn::Curves { closed }) => {
-                    let closed_group = closed.then(|| {
-                        self.groups += 1;
-                        self.groups
-                    });
-                    self.sources.push(e.reference(&layer));
-                    for p in &mut self.placed[first..] {
-                        p.closed_group = closed_group;
-                        if let Err(p) = p.curve.check_coordinates(super::MAX_COORDINATE) {
-                            return Err(ImportError::BadEntity {
-                                entity: e.reference(&layer),
-                                what: format!(
-                                    "coordinate ({}, {}) is not a number or lies beyond ±{:e} mm",
-                                    super::error::fmt_number(p.x),
-                                    super::error::fmt_number(p.y),
-                                    super::MAX_COORDINATE
-                                ),
-                            });
-                        }
+                    if !known {
+                        self.layer_index(&layer);
                     }
-                    if self.placed.len() > MAX_CURVES {
+                    self.sources.push(e.reference(&layer));
+                    if let Some(p) = bad {
+                        return Err(ImportError::BadEntity {
+                            entity: e.reference(&layer),
+                            what: format!(
+                                "coordinate ({}, {}) is not a number or lies beyond ±{:e} mm",
+                                super::error::fmt_number(p.x),
+                                super::error::fmt_number(p.y),
+                                super::MAX_COORDINATE
+                            ),
+                        });
+                    }
+                    if closed {
+                        self.groups += 1;
+                        self.elements.set_group_since(mark, Some(self.groups));
+                    }
+                    self.curves += count;
+                    if self.curves > MAX_CURVES {
                         return Err(ImportError::TooLarge {
                             limit: MAX_CURVES,
                             pos: e.pos,
@@ -164,7 +193,7 @@ impl<'a, 'b> Expander<'a, 'b> {
         // Counted before anything is built: nested blocks can multiply out exponentially.
         let cells = u64::try_from(cols.saturating_mul(rows)).unwrap_or(u64::MAX);
         let size = self.expanded_size(&name, 0).saturating_mul(cells);
-        if cells > MAX_CURVES as u64 || size.saturating_add(self.placed.len() as u64) > MAX_CURVES as u64 {
+        if cells > MAX_CURVES as u64 || size.saturating_add(self.curves as u64) > MAX_CURVES as u64 {
             return Err(ImportError::TooLarge {
                 limit: MAX_CURVES,
                 pos: e.pos,

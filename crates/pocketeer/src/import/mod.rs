@@ -17,6 +17,7 @@ mod fill;
 mod free_ends;
 pub mod nesting;
 mod nodes;
+mod placement;
 // Public for the property tests, which check its repair on random contours; not an API.
 #[doc(hidden)]
 pub mod self_crossing;
@@ -145,11 +146,13 @@ pub fn read_drawing(bytes: &[u8], options: &ImportOptions) -> Result<Drawing, Im
         return Err(ImportError::EmptyModelSpace);
     }
 
-    let mut expander = expand::Expander::new(&doc);
+    let mut expander = expand::Expander::new(&doc, options.layers.as_deref());
     expander.walk(&model, &Affine::scale(units.mm()), None)?;
     warnings.append(&mut expander.warnings);
-    let layers = layer_names(&doc, &expander.sources, options, &mut warnings);
-    let (elements, sources, extent) = elements_of(expander.placed, expander.sources, &layers, options);
+    let layers = expander.layers;
+    warn_of_missing_layers(&layers, options, &mut warnings);
+    let sources = expander.sources;
+    let (elements, extent) = expander.elements.finish();
     if elements.is_empty() {
         return Err(nothing_to_pocket(options, &layers, &entity_counts));
     }
@@ -189,116 +192,17 @@ fn drawing_units(
     (declared_units, units)
 }
 
-/// Every layer name: the LAYER table, then layers used but not declared; a warning for each
-/// layer asked for that the drawing does not have.
-fn layer_names(
-    doc: &dxf::Document,
-    sources: &[EntityRef],
-    options: &ImportOptions,
-    warnings: &mut Vec<ImportWarning>,
-) -> Vec<String> {
-    let mut layers = doc.layers.clone();
-    for s in sources {
-        if !layers.iter().any(|l| l.eq_ignore_ascii_case(&s.layer)) {
-            layers.push(s.layer.clone());
+/// A warning for each layer asked for that the drawing does not have.
+fn warn_of_missing_layers(layers: &[String], options: &ImportOptions, warnings: &mut Vec<ImportWarning>) {
+    for w in options.layers.iter().flatten() {
+        if !layers.iter().any(|l| l.eq_ignore_ascii_case(w)) {
+            warnings.push(ImportWarning::LayerNotInDrawing {
+                layer: w.clone(),
+                layers: layers.to_vec(),
+            });
         }
     }
-    if let Some(wanted) = &options.layers {
-        for w in wanted {
-            if !layers.iter().any(|l| l.eq_ignore_ascii_case(w)) {
-                warnings.push(ImportWarning::LayerNotInDrawing {
-                    layer: w.clone(),
-                    layers: layers.clone(),
-                });
-            }
-        }
-    }
-    layers
 }
-
-/// The elements of the curves placed on the layers the options keep, the entities they come
-/// from, and their extent.
-fn elements_of(
-    placed: Vec<expand::Placed>,
-    sources: Vec<EntityRef>,
-    layers: &[String],
-    options: &ImportOptions,
-) -> (Vec<Element>, Vec<EntityRef>, Aabb) {
-    let keep = |layer: &str| {
-        options
-            .layers
-            .as_ref()
-            .is_none_or(|w| w.iter().any(|x| x.eq_ignore_ascii_case(layer)))
-    };
-    // The layer of each source by its index, when kept: once per entity, not per curve.
-    let layer_of: Vec<Option<usize>> = sources
-        .iter()
-        .map(|s| {
-            keep(&s.layer).then(|| {
-                layers
-                    .iter()
-                    .position(|l| l.eq_ignore_ascii_case(&s.layer))
-                    .unwrap_or(0)
-            })
-        })
-        .collect();
-    let kept: Vec<expand::Placed> = placed
-        .into_iter()
-        .filter(|p| layer_of[p.source].is_some())
-        .collect();
-    let (elements, extent) = curves_to_elements(&kept, &layer_of);
-    (elements, sources, extent)
-}
-
-/// The placed curves as elements (lines and arcs with their layer and source), in order, and
-/// the box round them. Fitting arcs to splines and ellipses is most of the time a drawing of
-/// traced art takes to read, and each curve is fitted alone: the curves are shared out among
-/// the cores in runs, each run writing one list (a list per curve would be an allocation per
-/// line of a long polyline). The runs write elements, not segments to be copied into elements
-/// after: half a million arcs are 60 MB a copy.
-fn curves_to_elements(kept: &[expand::Placed], layer_of: &[Option<usize>]) -> (Vec<Element>, Aabb) {
-    let write = |run: &[expand::Placed]| {
-        let mut segments = Vec::new();
-        let mut elements = Vec::with_capacity(run.len());
-        let mut extent = Aabb::EMPTY;
-        for p in run.iter() {
-            segments.clear();
-            p.curve.to_segments(CURVE_TOLERANCE, &mut segments);
-            let layer = layer_of[p.source].unwrap_or(0);
-            elements.extend(segments.iter().map(|&segment| {
-                extent = extent.union(&segment.bbox());
-                Element {
-                    segment,
-                    layer,
-                    source: p.source,
-                    closed_group: p.closed_group,
-                }
-            }));
-        }
-        (elements, extent)
-    };
-    if !kept.iter().any(|p| p.curve.needs_fitting()) {
-        // Lines and arcs only: one pass writes the list, with no runs to copy together.
-        return write(kept);
-    }
-    let run = (kept.len() / RUNS).clamp(1, MAX_CURVES_PER_RUN);
-    let runs: Vec<&[expand::Placed]> = kept.chunks(run).collect();
-    let done = crate::parallel::map(&runs, |run| write(run));
-    let total = done.iter().map(|(e, _)| e.len()).sum();
-    let mut elements = Vec::with_capacity(total);
-    let mut extent = Aabb::EMPTY;
-    for (e, b) in done {
-        elements.extend(e);
-        extent = extent.union(&b);
-    }
-    (elements, extent)
-}
-
-/// Runs [`curves_to_elements`] cuts the curves into, at least one curve each: enough for the
-/// parallel map to share them out (it works alone below 256 items).
-const RUNS: usize = 1024;
-/// Most curves in one run: a run of lines is then worth a thread's turn.
-const MAX_CURVES_PER_RUN: usize = 64;
 
 /// Why a drawing whose model space has entities gives no element to pocket.
 fn nothing_to_pocket(
