@@ -117,7 +117,7 @@ impl Affine {
     pub fn similarity(&self) -> Option<f64> {
         let turning = self.a == self.d && self.b == -self.c;
         let mirroring = self.a == -self.d && self.b == self.c;
-        let scale = self.a.hypot(self.c);
+        let scale = (self.a * self.a + self.c * self.c).sqrt();
         ((turning || mirroring) && scale > 0.0 && scale.is_finite()).then_some(scale)
     }
 }

@@ -1,6 +1,6 @@
 //! Numbers of an ASCII DXF read from the bytes of their line, with the standard library's
-//! results: the usual form (a sign, at most 19 digits and a decimal point) is read directly,
-//! anything else by `str::parse`.
+//! results: the usual form (a sign, then at most 19 digits with a decimal point among them) is
+//! read directly, anything else by `str::parse`.
 
 /// Powers of ten that are exact in an `f64`.
 const EXACT_POWERS: [f64; 23] = [
@@ -21,34 +21,43 @@ pub fn real(text: &[u8]) -> Option<f64> {
         Some((b'+', rest)) => (false, rest),
         _ => (false, t),
     };
-    let mut mantissa: u64 = 0;
-    let mut count = 0usize;
-    let mut after_point: Option<usize> = None;
-    let mut simple = !digits.is_empty();
-    if simple {
-        for (i, &b) in digits.iter().enumerate() {
-            match b {
-                b'0'..=b'9' if count < 19 => {
-                    mantissa = mantissa * 10 + u64::from(b - b'0');
-                    count += 1;
-                }
-                b'.' if after_point.is_none() => after_point = Some(i),
-                _ => {
-                    simple = false;
-                    break;
-                }
+    if let Some((mantissa, decimals)) = decimal(digits) {
+        // Below 2^53 the mantissa is exact in a double.
+        if mantissa < (1 << 53) {
+            if let Some(&scale) = EXACT_POWERS.get(decimals) {
+                let x = mantissa as f64 / scale;
+                return Some(if negative { -x } else { x });
             }
         }
     }
-    // At most 19 digits (more are left to the standard library): the mantissa fits a u64.
-    if simple && count > 0 && mantissa < (1 << 53) {
-        let decimals = after_point.map_or(0, |p| digits.len() - 1 - p);
-        if let Some(&scale) = EXACT_POWERS.get(decimals) {
-            let x = mantissa as f64 / scale;
-            return Some(if negative { -x } else { x });
+    std::str::from_utf8(text).ok()?.trim().parse().ok()
+}
+
+/// Digits with at most one point among them (and at least one digit), 19 characters at most:
+/// the integer the digits spell without the point, and how many come after the point.
+fn decimal(text: &[u8]) -> Option<(u64, usize)> {
+    // Nineteen digits at most: below 10^19, no overflow of a u64.
+    if text.is_empty() || text.len() > 19 {
+        return None;
+    }
+    let mut mantissa = 0u64;
+    let mut point = None;
+    for (i, &b) in text.iter().enumerate() {
+        let digit = b.wrapping_sub(b'0');
+        if digit < 10 {
+            mantissa = mantissa * 10 + u64::from(digit);
+        } else if b == b'.' && point.is_none() {
+            point = Some(i);
+        } else {
+            return None;
         }
     }
-    std::str::from_utf8(text).ok()?.trim().parse().ok()
+    match point {
+        None => Some((mantissa, 0)),
+        // A point alone is not a number.
+        Some(_) if text.len() == 1 => None,
+        Some(p) => Some((mantissa, text.len() - 1 - p)),
+    }
 }
 
 /// The integer written in `text` (blanks around it allowed), as `str::parse::<i64>` reads the

@@ -95,43 +95,41 @@ enum Format {
     Binary { wide: bool },
 }
 
-/// Where the next group starts: its byte offset, and for an ASCII file the line of its code.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Mark {
-    at: usize,
-    line: usize,
-}
-
-/// The groups of a DXF file, read one at a time; after an error or `0 EOF`, nothing more.
-#[derive(Debug, Clone)]
-pub struct Tokens<'a> {
-    /// The file's bytes, up to where reading stops.
+/// Reads the groups of a file one at a time, packed; after an error or `0 EOF`, nothing more.
+struct Reader<'a> {
     bytes: &'a [u8],
     format: Format,
-    next: Mark,
-    /// Where the value of the last binary group starts.
-    value_at: usize,
-    /// Groups handed out so far.
+    /// Byte offset of the next group.
+    at: usize,
+    /// Line of the next group's code (ASCII).
+    line: usize,
+    /// Groups read so far.
     count: usize,
     done: bool,
     saw_eof: bool,
 }
 
-impl<'a> Tokens<'a> {
+impl<'a> Reader<'a> {
     /// A reader of `bytes`, a whole ASCII or binary DXF file. Refuses, before reading a group,
     /// text with binary data in it.
-    pub fn new(bytes: &'a [u8]) -> Result<Tokens<'a>, ImportError> {
+    fn new(bytes: &'a [u8]) -> Result<Reader<'a>, ImportError> {
+        let mut reader = Reader {
+            bytes,
+            format: Format::Ascii,
+            at: 0,
+            line: 1,
+            count: 0,
+            done: false,
+            saw_eof: false,
+        };
         if bytes.starts_with(BINARY_SENTINEL) {
             // R12 binary files write one-byte group codes (255 escapes a two-byte code); later
             // versions write two bytes. The first group is `0 SECTION`: a zero second byte
             // means two-byte codes.
-            let at = BINARY_SENTINEL.len();
-            let wide = bytes.get(at + 1) == Some(&0);
-            return Ok(Tokens::resume(
-                bytes,
-                Format::Binary { wide },
-                Mark { at, line: 0 },
-            ));
+            reader.at = BINARY_SENTINEL.len();
+            let wide = bytes.get(reader.at + 1) == Some(&0);
+            reader.format = Format::Binary { wide };
+            return Ok(reader);
         }
         let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         if memchr::memchr(0, body).is_some() {
@@ -139,34 +137,12 @@ impl<'a> Tokens<'a> {
                 "the file contains binary data but no binary DXF header".into(),
             ));
         }
-        let at = bytes.len() - body.len();
-        Ok(Tokens::resume(bytes, Format::Ascii, Mark { at, line: 1 }))
-    }
-
-    fn resume(bytes: &'a [u8], format: Format, next: Mark) -> Tokens<'a> {
-        Tokens {
-            bytes,
-            format,
-            next,
-            value_at: 0,
-            count: 0,
-            done: false,
-            saw_eof: false,
-        }
-    }
-
-    /// True for a binary DXF.
-    pub fn binary(&self) -> bool {
-        matches!(self.format, Format::Binary { .. })
-    }
-
-    /// True once `0 EOF` has been read.
-    pub fn saw_eof(&self) -> bool {
-        self.saw_eof
+        reader.at = bytes.len() - body.len();
+        Ok(reader)
     }
 
     /// The next group, `None` at the end (of the bytes, or after `0 EOF`).
-    pub fn next_group(&mut self) -> Result<Option<Group<'a>>, ImportError> {
+    fn next(&mut self) -> Result<Option<Packed>, ImportError> {
         if self.done {
             return Ok(None);
         }
@@ -175,13 +151,13 @@ impl<'a> Tokens<'a> {
             Format::Binary { wide } => self.next_binary(wide),
         };
         match read {
-            Ok(Some(g)) => {
+            Ok(Some(p)) => {
                 self.count += 1;
-                if g.is(0, "EOF") {
+                if p.code == 0 && self.value(&p) == b"EOF" {
                     self.saw_eof = true;
                     self.done = true;
                 }
-                Ok(Some(g))
+                Ok(Some(p))
             }
             Ok(None) => {
                 self.done = true;
@@ -197,37 +173,46 @@ impl<'a> Tokens<'a> {
         }
     }
 
-    /// The next line of an ASCII file without its line break, `None` at the end of the bytes.
-    fn line(&mut self) -> Option<&'a [u8]> {
-        // Past the end once the last line (empty after a final line break) has been read.
-        let rest = self.bytes.get(self.next.at..)?;
-        let line = match line_break(rest) {
-            Some(n) => {
-                self.next.at += n + 1;
-                &rest[..n]
-            }
-            None => {
-                self.next.at = self.bytes.len() + 1;
-                rest
-            }
-        };
-        self.next.line += 1;
-        Some(line.strip_suffix(b"\r").unwrap_or(line))
+    /// The bytes of a group's value.
+    fn value(&self, p: &Packed) -> &'a [u8] {
+        let from = p.value as usize;
+        self.bytes.get(from..from + p.len as usize).unwrap_or_default()
     }
 
-    fn next_ascii(&mut self) -> Result<Option<Group<'a>>, ImportError> {
+    /// The next line of an ASCII file, as where it starts and where it ends without its line
+    /// break; `None` at the end of the bytes.
+    #[inline(always)]
+    fn line(&mut self) -> Option<(usize, usize)> {
+        let (start, len) = (self.at, self.bytes.len());
+        // Past the end once the last line (empty after a final line break) has been read.
+        if start > len {
+            return None;
+        }
+        let mut end = match line_break(&self.bytes[start..]) {
+            Some(n) => start + n,
+            None => len,
+        };
+        self.at = end + 1;
+        self.line += 1;
+        if end > start && self.bytes[end - 1] == b'\r' {
+            end -= 1;
+        }
+        Some((start, end))
+    }
+
+    fn next_ascii(&mut self) -> Result<Option<Packed>, ImportError> {
         loop {
-            let line_no = self.next.line;
-            let Some(code_line) = self.line() else {
+            let line_no = self.line;
+            let Some((from, to)) = self.line() else {
                 return Ok(None);
             };
-            let code_text = code_line.trim_ascii();
+            let code_text = self.bytes[from..to].trim_ascii();
             if code_text.is_empty() {
                 // Blank lines before the first group or at the very end are harmless.
                 if self.count == 0 {
                     continue;
                 }
-                let rest = self.bytes.get(self.next.at..).unwrap_or_default();
+                let rest = self.bytes.get(self.at..).unwrap_or_default();
                 if rest.iter().all(u8::is_ascii_whitespace) {
                     return Ok(None);
                 }
@@ -244,30 +229,33 @@ impl<'a> Tokens<'a> {
                     what: format!("expected a group code, found '{shown}'"),
                 });
             };
-            let Some(value_line) = self.line() else {
+            let Some((mut from, mut to)) = self.line() else {
                 return Err(ImportError::Syntax {
                     pos: Pos::Line(line_no),
                     what: format!("group code {code} has no value: the file ends here"),
                 });
             };
             // Keywords and names: surrounding blanks are never meaningful.
-            let keyword = (0..=9).contains(&code) || code == 100 || code == 102;
-            let value = if keyword {
-                value_line.trim_ascii()
-            } else {
-                value_line
-            };
-            return Ok(Some(Group {
+            if (0..=9).contains(&code) || code == 100 || code == 102 {
+                while from < to && self.bytes[from].is_ascii_whitespace() {
+                    from += 1;
+                }
+                while to > from && self.bytes[to - 1].is_ascii_whitespace() {
+                    to -= 1;
+                }
+            }
+            return Ok(Some(Packed {
                 code,
-                value: Value::Text(value),
-                pos: Pos::Line(line_no),
+                value: from as u32,
+                len: (to - from) as u32,
+                pos: line_no as u32,
             }));
         }
     }
 
-    fn next_binary(&mut self, wide: bool) -> Result<Option<Group<'a>>, ImportError> {
+    fn next_binary(&mut self, wide: bool) -> Result<Option<Packed>, ImportError> {
         let bytes = self.bytes;
-        let start = self.next.at;
+        let start = self.at;
         if start >= bytes.len() {
             return Ok(None);
         }
@@ -293,30 +281,30 @@ impl<'a> Tokens<'a> {
                 b as i32
             }
         };
-        self.value_at = at;
-        let value = match kind_of(code) {
+        let value_at = at;
+        let len = match kind_of(code) {
             Kind::Text => {
                 let rest = bytes.get(at..).unwrap_or_default();
                 let n = memchr::memchr(0, rest).ok_or_else(|| truncated(start))?;
                 take(&mut at, n + 1)?;
-                Value::Text(&rest[..n])
+                n
             }
-            Kind::Real => Value::Real(f64::from_le_bytes(array(take(&mut at, 8)?))),
-            Kind::I8 => Value::Int(take(&mut at, 1)?[0] as i64),
-            Kind::I16 => Value::Int(i16::from_le_bytes(array(take(&mut at, 2)?)) as i64),
-            Kind::I32 => Value::Int(i32::from_le_bytes(array(take(&mut at, 4)?)) as i64),
-            Kind::I64 => Value::Int(i64::from_le_bytes(array(take(&mut at, 8)?))),
+            Kind::Real | Kind::I64 => take(&mut at, 8)?.len(),
+            Kind::I8 => take(&mut at, 1)?.len(),
+            Kind::I16 => take(&mut at, 2)?.len(),
+            Kind::I32 => take(&mut at, 4)?.len(),
             Kind::Bytes => {
                 let n = take(&mut at, 1)?[0] as usize;
                 take(&mut at, n)?;
-                Value::Bytes
+                0
             }
         };
-        self.next.at = at;
-        Ok(Some(Group {
+        self.at = at;
+        Ok(Some(Packed {
             code,
-            value,
-            pos: Pos::Byte(start),
+            value: value_at as u32,
+            len: len as u32,
+            pos: start as u32,
         }))
     }
 }
@@ -324,6 +312,7 @@ impl<'a> Tokens<'a> {
 /// Where the first line break of `bytes` is. A DXF line is a few bytes long, too short for a
 /// vector search to pay for its set-up: eight bytes at a time are tested in a word, by the
 /// borrow trick (the lowest byte flagged is exactly the first zero byte of `word ^ '\n'`).
+#[inline(always)]
 fn line_break(bytes: &[u8]) -> Option<usize> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     const HIGHS: u64 = 0x8080_8080_8080_8080;
@@ -434,30 +423,16 @@ impl<'a> GroupList<'a> {
                 bytes.len()
             )));
         }
-        let mut tokens = Tokens::new(bytes)?;
-        let offset = |s: &[u8]| (s.as_ptr() as usize - bytes.as_ptr() as usize) as u32;
+        let mut reader = Reader::new(bytes)?;
         // A group takes at least four bytes of an ASCII file (two of a binary one).
         let mut packed = Vec::with_capacity(bytes.len() / 12);
-        while let Some(g) = tokens.next_group()? {
-            let (value, len) = match g.value {
-                Value::Text(t) => (offset(t), t.len() as u32),
-                // Binary numbers: where the value starts (after the code) and its width.
-                _ => (tokens.value_at as u32, (tokens.next.at - tokens.value_at) as u32),
-            };
-            let pos = match g.pos {
-                Pos::Line(n) | Pos::Byte(n) => n as u32,
-            };
-            packed.push(Packed {
-                code: g.code,
-                value,
-                len,
-                pos,
-            });
+        while let Some(p) = reader.next()? {
+            packed.push(p);
         }
         Ok(GroupList {
             bytes,
-            binary: tokens.binary(),
-            saw_eof: tokens.saw_eof(),
+            binary: matches!(reader.format, Format::Binary { .. }),
+            saw_eof: reader.saw_eof,
             packed,
         })
     }
@@ -558,26 +533,22 @@ impl<'a> Groups<'a> {
     }
 }
 
-/// Every group of `bytes` as the reader hands them out, and the reader after them: for tests.
-#[cfg(test)]
-fn read_all(bytes: &[u8]) -> Result<(Vec<Group<'_>>, Tokens<'_>), ImportError> {
-    let mut tokens = Tokens::new(bytes)?;
-    let mut groups = Vec::new();
-    while let Some(g) = tokens.next_group()? {
-        groups.push(g);
-    }
-    Ok((groups, tokens))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// Every group of `bytes`, and whether the list saw `0 EOF` (the list, which the groups
+    /// borrow, is leaked: a test's few bytes).
+    fn read_all(bytes: &'static [u8]) -> Result<(Vec<Group<'static>>, bool), ImportError> {
+        let list: &'static GroupList<'static> = Box::leak(Box::new(GroupList::read(bytes)?));
+        Ok((list.all().iter().collect(), list.saw_eof()))
+    }
+
     #[test]
     fn ascii_groups_with_crlf_and_padding() {
-        let (g, t) =
+        let (g, eof) =
             read_all(b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n 10\r\n 1.5 \r\n  0\r\nEOF\r\ntrash").unwrap();
-        assert!(t.saw_eof());
+        assert!(eof);
         assert_eq!(g.len(), 4);
         assert!(g[1].is(2, "ENTITIES"));
         assert_eq!(g[2].real(), Some(1.5));
@@ -586,8 +557,8 @@ mod tests {
 
     #[test]
     fn blank_lines_lead_and_trail_but_do_not_interrupt() {
-        let (g, t) = read_all(b"\n\n  0\nSECTION\n  0\nENDSEC\n\n  \n").unwrap();
-        assert!(!t.saw_eof());
+        let (g, eof) = read_all(b"\n\n  0\nSECTION\n  0\nENDSEC\n\n  \n").unwrap();
+        assert!(!eof);
         assert_eq!(g.len(), 2);
         assert_eq!(g[0].pos, Pos::Line(3));
         let e = read_all(b"  0\nSECTION\n\n  0\nENDSEC\n").unwrap_err();
