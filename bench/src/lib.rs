@@ -42,6 +42,34 @@ pub fn dxf(case: &Case) -> String {
     s
 }
 
+/// An ASCII DXF's groups written as a binary DXF (R13 and later: two-byte codes, numbers as
+/// stored by their code's range, texts ending in a zero byte).
+pub fn binary_dxf(ascii: &str) -> Vec<u8> {
+    let mut out = b"AutoCAD Binary DXF\r\n\x1a\0".to_vec();
+    let mut lines = ascii.lines();
+    while let (Some(code), Some(value)) = (lines.next(), lines.next()) {
+        let code: i16 = code.trim().parse().expect("a group code");
+        out.extend(code.to_le_bytes());
+        let value = value.trim();
+        match code {
+            10..=59 | 110..=149 | 210..=239 | 460..=469 | 1010..=1059 => {
+                out.extend(value.parse::<f64>().expect("a real").to_le_bytes())
+            }
+            60..=79 | 170..=179 | 270..=289 | 370..=389 | 400..=409 | 1060..=1070 => {
+                out.extend(value.parse::<i16>().expect("a 16-bit integer").to_le_bytes())
+            }
+            90..=99 | 420..=429 | 440..=459 | 1071 => {
+                out.extend(value.parse::<i32>().expect("a 32-bit integer").to_le_bytes())
+            }
+            _ => {
+                out.extend(value.as_bytes());
+                out.push(0);
+            }
+        }
+    }
+    out
+}
+
 /// The case as a pocket: the first ring its boundary, the others its islands.
 pub fn pocket(case: &Case) -> Pocket {
     Pocket {

@@ -65,9 +65,9 @@ fn main() {
         drawings.retain(|(c, _)| c.name.contains(only.as_str()));
     }
 
-    println!("Import: pocketeer::read_drawing on the file's bytes, in process, median of {runs}.\n");
-    println!("| drawing | MB | read ms | MB/s |");
-    println!("|---|---:|---:|---:|");
+    println!("Import: pocketeer::read_drawing on the file's bytes, in process, median of {runs}; the same drawing as a binary DXF beside it.\n");
+    println!("| drawing | MB | read ms | MB/s | binary MB | binary ms | binary MB/s |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
     let mut files = Vec::new();
     for (case, kind) in &drawings {
         let text = pocketeer_bench::dxf(case);
@@ -76,18 +76,27 @@ fn main() {
             eprintln!("{}: {e}", file.display());
             std::process::exit(2);
         }
-        let times: Vec<Duration> = (0..runs)
-            .map(|_| {
-                let t = Instant::now();
-                let read = pocketeer::read_drawing(text.as_bytes(), &Default::default());
-                let elapsed = t.elapsed();
-                assert!(read.is_ok(), "{}: not read", case.name);
-                elapsed
-            })
-            .collect();
-        let ms = median(times).as_secs_f64() * 1e3;
-        let mb = text.len() as f64 / 1e6;
-        println!("| {} | {mb:.2} | {ms:.1} | {:.0} |", case.name, mb / ms * 1e3);
+        let binary = pocketeer_bench::binary_dxf(&text);
+        let read = |bytes: &[u8]| {
+            let times: Vec<Duration> = (0..runs)
+                .map(|_| {
+                    let t = Instant::now();
+                    let read = pocketeer::read_drawing(bytes, &Default::default());
+                    let elapsed = t.elapsed();
+                    assert!(read.is_ok(), "{}: not read", case.name);
+                    elapsed
+                })
+                .collect();
+            let ms = median(times).as_secs_f64() * 1e3;
+            let mb = bytes.len() as f64 / 1e6;
+            (mb, ms, mb / ms * 1e3)
+        };
+        let (mb, ms, rate) = read(text.as_bytes());
+        let (bmb, bms, brate) = read(&binary);
+        println!(
+            "| {} | {mb:.2} | {ms:.1} | {rate:.0} | {bmb:.2} | {bms:.1} | {brate:.0} |",
+            case.name
+        );
         files.push((case.name.clone(), *kind, file));
     }
 
