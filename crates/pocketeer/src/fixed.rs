@@ -52,19 +52,36 @@ pub(crate) fn fixed(v: f64, decimals: usize) -> String {
     out
 }
 
-/// Appends the decimal digits of `n`, padded with zeros to at least `width` digits.
-fn push_digits(out: &mut String, mut n: u64, width: usize) {
+/// The two digits of every number below 100, side by side.
+const PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// Appends the decimal digits of `n`, padded with zeros to at least `width` digits (20 at
+/// most, the digits of `u64::MAX`). Two digits a division: a drawing's text is mostly digits.
+pub(crate) fn push_digits(out: &mut String, mut n: u64, width: usize) {
     // u64::MAX has 20 digits.
     let mut buf = [b'0'; 20];
     let mut at = buf.len();
-    while n > 0 {
+    while n >= 100 {
+        let pair = (n % 100) as usize * 2;
+        n /= 100;
+        at -= 2;
+        buf[at..at + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
+    }
+    if n >= 10 {
+        at -= 2;
+        buf[at..at + 2].copy_from_slice(&PAIRS[n as usize * 2..n as usize * 2 + 2]);
+    } else if n > 0 {
         at -= 1;
-        buf[at] = b'0' + (n % 10) as u8;
-        n /= 10;
+        buf[at] = b'0' + n as u8;
     }
     let start = at.min(buf.len() - width.min(buf.len()));
-    // Only ASCII digits were written: the check cannot fail.
-    out.push_str(std::str::from_utf8(&buf[start..]).unwrap_or_default());
+    // ASCII digits, each one byte of the string (no UTF-8 check of the buffer to pass).
+    out.extend(buf[start..].iter().map(|&b| char::from(b)));
 }
 
 #[cfg(test)]
@@ -88,6 +105,14 @@ mod tests {
     }
 
     proptest! {
+        /// Digits as the standard library prints them, zero-padded to the width.
+        #[test]
+        fn digits_as_printed(n in prop_oneof![0u64..1000, any::<u64>()], width in 0usize..=20) {
+            let mut out = String::new();
+            push_digits(&mut out, n, width);
+            prop_assert_eq!(out, format!("{n:0width$}"));
+        }
+
         /// The text reads back within half a last decimal (and the scaling's rounding) of the
         /// number, and differs from the standard library's exact formatting by one in the last
         /// decimal at most.

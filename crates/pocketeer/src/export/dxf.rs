@@ -1,10 +1,9 @@
 //! A minimal DXF writer: closed contours as LWPOLYLINE entities with bulges (arcs stay exact,
 //! a full circle as two half circles), in a file any CAD program reads.
 
-use crate::fixed::push_number;
+use crate::fixed::{push_digits, push_number};
 use crate::geom::{Contour, Segment};
 use crate::import::Units;
-use std::fmt::Write;
 
 /// One contour to write, on a layer.
 pub struct LayeredContour<'a> {
@@ -45,16 +44,24 @@ fn insunits(u: Units) -> i32 {
 pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     let k = 1.0 / units.mm();
     let mut s = String::new();
-    // Group codes right-aligned in three columns, as AutoCAD writes them.
-    let code = |s: &mut String, code: i32| {
-        let _ = writeln!(s, "{code:>3}");
+    // Group codes right-aligned in three columns, as AutoCAD writes them (by hand: the
+    // formatting machinery was a tenth of writing a large drawing).
+    let code = |s: &mut String, code: u16| {
+        let digits = match code {
+            0..=9 => 1,
+            10..=99 => 2,
+            _ => 3,
+        };
+        s.push_str(&"   "[..3usize.saturating_sub(digits)]);
+        push_digits(s, u64::from(code), 1);
+        s.push('\n');
     };
-    let pair = |s: &mut String, c: i32, value: &str| {
+    let pair = |s: &mut String, c: u16, value: &str| {
         code(s, c);
         s.push_str(value);
         s.push('\n');
     };
-    let number = |s: &mut String, c: i32, v: f64, decimals: usize| {
+    let number = |s: &mut String, c: u16, v: f64, decimals: usize| {
         code(s, c);
         push_number(s, v, decimals);
         s.push('\n');
