@@ -124,10 +124,12 @@ impl<'a> Reader<'a> {
         };
         if bytes.starts_with(BINARY_SENTINEL) {
             // R12 binary files write one-byte group codes (255 escapes a two-byte code); later
-            // versions write two bytes. The first group is `0 SECTION`: a zero second byte
-            // means two-byte codes.
+            // versions write two bytes. The first group is `0 SECTION`, or a `999` comment
+            // before it: a zero second byte, or 999 in two bytes (one-byte codes would write
+            // 999 as 255 and two bytes), means two-byte codes.
             reader.at = BINARY_SENTINEL.len();
-            let wide = bytes.get(reader.at + 1) == Some(&0);
+            let first = bytes.get(reader.at..reader.at + 2);
+            let wide = first.is_some_and(|b| b[1] == 0 || i16::from_le_bytes([b[0], b[1]]) == 999);
             reader.format = Format::Binary { wide };
             return Ok(reader);
         }
@@ -649,6 +651,29 @@ mod tests {
     fn empty_number_is_none_not_an_error() {
         let (g, _) = read_all(b"  0\nSECTION\n 70\n\n  0\nEOF\n").unwrap();
         assert_eq!(g[1].int(), None);
+    }
+
+    #[test]
+    fn a_binary_file_may_begin_with_a_comment() {
+        let mut bytes = BINARY_SENTINEL.to_vec();
+        for (code, text) in [
+            (999i16, "made by hand"),
+            (0, "SECTION"),
+            (2, "ENTITIES"),
+            (0, "ENDSEC"),
+            (0, "EOF"),
+        ] {
+            bytes.extend(code.to_le_bytes());
+            bytes.extend(text.as_bytes());
+            bytes.push(0);
+        }
+        let list: &'static GroupList<'static> = Box::leak(Box::new(
+            GroupList::read(Box::leak(bytes.into_boxed_slice())).unwrap(),
+        ));
+        let g: Vec<Group> = list.all().iter().collect();
+        assert!(list.binary() && list.saw_eof());
+        assert_eq!(g.len(), 5);
+        assert!(g[0].code == 999 && g[1].is(0, "SECTION") && g[2].is(2, "ENTITIES"));
     }
 
     #[test]
