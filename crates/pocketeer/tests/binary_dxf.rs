@@ -2,6 +2,9 @@
 //! the corpus fixtures) written again as a binary DXF gives the same elements, layers, entity
 //! counts and warnings.
 
+mod common;
+
+use common::corpus::dxf_files;
 use pocketeer::{read_drawing, ImportOptions};
 use std::path::{Path, PathBuf};
 
@@ -47,23 +50,11 @@ fn binary_twin(ascii: &str) -> Option<Vec<u8>> {
     Some(out)
 }
 
+/// The examples and the corpus fixtures.
 fn drawings() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    for dir in [root.join("../../examples"), root.join("tests/fixtures/corpus")] {
-        let mut stack = vec![dir];
-        while let Some(d) = stack.pop() {
-            for entry in std::fs::read_dir(&d).into_iter().flatten().flatten() {
-                let p = entry.path();
-                if p.is_dir() {
-                    stack.push(p);
-                } else if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")) {
-                    files.push(p);
-                }
-            }
-        }
-    }
-    files.sort();
+    let mut files = dxf_files(&root.join("../../examples"));
+    files.extend(dxf_files(&root.join("tests/fixtures/corpus")));
     files
 }
 

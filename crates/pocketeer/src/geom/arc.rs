@@ -141,8 +141,16 @@ impl Arc {
         Arc::with_ends(center, radius, a0, sweep, start, end)
     }
 
-    /// The arc with its end points given, on it to within rounding.
-    fn with_ends(center: Point, radius: f64, start_angle: f64, sweep: f64, start: Point, end: Point) -> Arc {
+    /// The arc with its end points given, on it to within rounding (the import maps a
+    /// polyline's arcs with their vertices kept exactly as their ends).
+    pub(crate) fn with_ends(
+        center: Point,
+        radius: f64,
+        start_angle: f64,
+        sweep: f64,
+        start: Point,
+        end: Point,
+    ) -> Arc {
         Arc {
             center,
             radius,
@@ -151,20 +159,6 @@ impl Arc {
             start,
             end,
         }
-    }
-
-    /// The arc with all its numbers given, ends included, for a caller that maps an arc whose
-    /// ends must stay exactly where they are mapped to (a polyline's vertices): `start` and
-    /// `end` must lie on the circle at `start_angle` and `start_angle + sweep`, to rounding.
-    pub fn through_ends(
-        center: Point,
-        radius: f64,
-        start_angle: f64,
-        sweep: f64,
-        start: Point,
-        end: Point,
-    ) -> Arc {
-        Arc::with_ends(center, radius, start_angle, sweep, start, end)
     }
 
     /// DXF bulge: tan(sweep / 4).

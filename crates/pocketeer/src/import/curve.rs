@@ -429,7 +429,7 @@ impl Curve {
                     } else {
                         ((start - center).angle(), arc.sweep() * m.det().signum())
                     };
-                    Curve::Arc(Arc::through_ends(
+                    Curve::Arc(Arc::with_ends(
                         center,
                         arc.radius() * scale,
                         start_angle,

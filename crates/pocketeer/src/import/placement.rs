@@ -42,7 +42,8 @@ impl Elements {
         }
     }
 
-    /// How many curves have been placed and not yet marked (see [`Elements::mark`]).
+    /// Where the next curve goes, for [`Elements::set_group_since`]: the elements written and
+    /// the curves waiting so far.
     pub fn mark(&self) -> (usize, usize) {
         (self.done.len(), self.to_fit.len())
     }

@@ -15,12 +15,7 @@ const EXACT_POWERS: [f64; 23] = [
 /// When `m < 2^53` and `k ≤ 22` both are exact doubles and one division rounds the quotient
 /// correctly: the same double as any correct parser gives.
 pub fn real(text: &[u8]) -> Option<f64> {
-    let t = text.trim_ascii();
-    let (negative, digits) = match t.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        Some((b'+', rest)) => (false, rest),
-        _ => (false, t),
-    };
+    let (negative, digits) = signed(text);
     if let Some((mantissa, decimals)) = decimal(digits) {
         // Below 2^53 the mantissa is exact in a double.
         if mantissa < (1 << 53) {
@@ -31,6 +26,16 @@ pub fn real(text: &[u8]) -> Option<f64> {
         }
     }
     std::str::from_utf8(text).ok()?.trim().parse().ok()
+}
+
+/// `text` without the blanks around it, as its sign (true for `-`) and what follows the sign.
+fn signed(text: &[u8]) -> (bool, &[u8]) {
+    let t = text.trim_ascii();
+    match t.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        Some((b'+', rest)) => (false, rest),
+        _ => (false, t),
+    }
 }
 
 /// Digits with at most one point among them (and at least one digit), 19 characters at most:
@@ -63,12 +68,7 @@ fn decimal(text: &[u8]) -> Option<(u64, usize)> {
 /// The integer written in `text` (blanks around it allowed), as `str::parse::<i64>` reads the
 /// trimmed text.
 pub fn int(text: &[u8]) -> Option<i64> {
-    let t = text.trim_ascii();
-    let (negative, digits) = match t.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        Some((b'+', rest)) => (false, rest),
-        _ => (false, t),
-    };
+    let (negative, digits) = signed(text);
     if !digits.is_empty() && digits.len() <= 18 && digits.iter().all(u8::is_ascii_digit) {
         let n = digits.iter().fold(0i64, |n, &d| n * 10 + i64::from(d - b'0'));
         return Some(if negative { -n } else { n });
