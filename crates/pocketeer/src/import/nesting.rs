@@ -111,7 +111,24 @@ pub fn find_pockets(
             .is_some_and(|l| l % 2 == 0)
     };
     let loops = meetings.loops(contours, &depths, &removed, tol, &mut warnings);
-    let pockets = assemble(loops, tol, &mut warnings);
+    // The lone contours are moved out of `simple`, not copied: half a million arcs of traced
+    // art are 45 MB a copy.
+    let mut simple = simple;
+    let loops = loops
+        .into_iter()
+        .map(|l| match l {
+            Loop::Alone { contour, ccw } => {
+                let mut c = std::mem::take(&mut simple[contour].contour);
+                let area = c.orient(ccw);
+                (c, area)
+            }
+            Loop::Stitched(c) => {
+                let area = c.signed_area();
+                (c, area)
+            }
+        })
+        .collect();
+    let pockets = assemble_with_areas(loops, tol, &mut warnings);
     // A contour filled into several loops is as deep as its outermost loop.
     let mut drawn_depths = vec![usize::MAX; drawn];
     for (k, &o) in origin.iter().enumerate() {
@@ -293,22 +310,23 @@ impl Meetings {
         removed: &dyn Fn(Point) -> bool,
         tol: &Tolerance,
         warnings: &mut Vec<ImportWarning>,
-    ) -> Vec<Contour> {
+    ) -> Vec<Loop> {
         let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
         for (c, &root) in self.cluster.iter().enumerate() {
             members.entry(root).or_default().push(c);
         }
-        let mut loops: Vec<Contour> = Vec::new();
+        let mut loops: Vec<Loop> = Vec::new();
         let mut roots: Vec<usize> = members.keys().copied().collect();
         roots.sort_unstable();
         for root in roots {
             let group = &members[&root];
             if group.len() == 1 {
-                let c = &contours[group[0]].contour;
                 // Alone, a contour bounds removed material on its inside exactly when its depth
                 // is even.
-                let want_ccw = depths[group[0]] % 2 == 0;
-                loops.push(c.clone().oriented(want_ccw));
+                loops.push(Loop::Alone {
+                    contour: group[0],
+                    ccw: depths[group[0]] % 2 == 0,
+                });
                 continue;
             }
             let members: Vec<&Contour> = group.iter().map(|&c| &contours[c].contour).collect();
@@ -318,10 +336,18 @@ impl Meetings {
             if lost > 0 {
                 warnings.push(ImportWarning::PiecesLost { pieces: lost });
             }
-            loops.extend(stitched);
+            loops.extend(stitched.into_iter().map(Loop::Stitched));
         }
         loops
     }
+}
+
+/// A loop bounding removed material, as [`Meetings::loops`] finds it.
+enum Loop {
+    /// A contour that meets no other, to be turned counter-clockwise when `ccw`.
+    Alone { contour: usize, ccw: bool },
+    /// A loop stitched from the pieces of contours that meet, turned already.
+    Stitched(Contour),
 }
 
 /// Nesting depth of each contour: 0 when none encloses it, else one more than the deepest contour
@@ -492,13 +518,29 @@ pub(crate) fn assemble(
     tol: &Tolerance,
     warnings: &mut Vec<ImportWarning>,
 ) -> Vec<Pocket> {
-    let (outer, holes): (Vec<Contour>, Vec<Contour>) = loops.into_iter().partition(Contour::is_ccw);
-    // Largest first; the area is a pass over the boundary, computed once per pocket.
-    let mut by_area: Vec<(f64, Contour)> = outer.into_iter().map(|b| (b.signed_area(), b)).collect();
-    by_area.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let (areas, mut pockets): (Vec<f64>, Vec<Pocket>) = by_area
+    let loops = loops
         .into_iter()
-        .map(|(area, boundary)| {
+        .map(|c| {
+            let area = c.signed_area();
+            (c, area)
+        })
+        .collect();
+    assemble_with_areas(loops, tol, warnings)
+}
+
+/// [`assemble`] of loops whose signed areas are known: each `(loop, area)`.
+fn assemble_with_areas(
+    loops: Vec<(Contour, f64)>,
+    tol: &Tolerance,
+    warnings: &mut Vec<ImportWarning>,
+) -> Vec<Pocket> {
+    let (mut outer, holes): (Vec<_>, Vec<_>) = loops.into_iter().partition(|(_, area)| *area > 0.0);
+    // Largest first.
+    outer.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let holes: Vec<Contour> = holes.into_iter().map(|(c, _)| c).collect();
+    let (areas, mut pockets): (Vec<f64>, Vec<Pocket>) = outer
+        .into_iter()
+        .map(|(boundary, area)| {
             let pocket = Pocket {
                 boundary,
                 islands: Vec::new(),
