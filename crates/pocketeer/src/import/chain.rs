@@ -216,23 +216,34 @@ pub fn chain(elements: &[Element], tol: &Tolerance, close_gaps: f64) -> Chains {
 /// apart and chained with others, so that two polylines sharing an edge both stay whole. One
 /// shorter than the join tolerance is dropped, one drawn there and back again ignored.
 fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Tolerance, out: &mut Chains) {
-    let mut groups: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    // A closed entity's elements are placed one after another: its group is found as runs
+    // of consecutive elements (one look-up per element in a map of groups was a tenth of the
+    // import of traced art), the runs of each group then taken in order of group.
+    let mut runs: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
     for (i, e) in elements.iter().enumerate() {
         if let Some(g) = e.closed_group {
-            groups.entry(g).or_default().push(i);
             alive[i] = false;
+            match runs.last_mut() {
+                Some((h, run)) if *h == g && run.end == i => run.end = i + 1,
+                _ => runs.push((g, i..i + 1)),
+            }
         }
     }
-    let groups: Vec<Vec<usize>> = groups.into_values().collect();
+    // Stable: the runs of one group stay in the order of their elements.
+    runs.sort_by_key(|(g, _)| *g);
+    let groups: Vec<Vec<usize>> = runs
+        .chunk_by(|a, b| a.0 == b.0)
+        .map(|same| same.iter().flat_map(|(_, run)| run.clone()).collect())
+        .collect();
     // Each closed polyline is a contour alone, and traced art has thousands: shared out among
     // the cores, taken in order.
     let taken = crate::parallel::map(&groups, |members| closed_polyline(elements, members, tol));
-    for (members, t) in groups.iter().zip(taken) {
+    for (members, t) in groups.into_iter().zip(taken) {
         match t {
             ClosedPolyline::Contour(contour) => out.contours.push(ChainedContour {
                 contour,
                 layer: elements[members[0]].layer,
-                elements: members.clone(),
+                elements: members,
             }),
             ClosedPolyline::ZeroLength => out.zero_length_dropped += members.len(),
             ClosedPolyline::NoArea(at) => out.warnings.push(ImportWarning::NoArea {
@@ -522,23 +533,20 @@ fn drop_covered(elements: &[Element], alive: &mut [bool], tol: &Tolerance) -> us
             dropped += 1;
         }
     }
-    let boxes: Vec<Aabb> = elements
+    // Only the elements still in play are indexed: traced art's are nearly all closed
+    // entities, taken already.
+    let live: Vec<usize> = (0..elements.len()).filter(|&i| alive[i]).collect();
+    let boxes: Vec<Aabb> = live
         .iter()
-        .enumerate()
-        .map(|(i, e)| {
-            if alive[i] {
-                e.segment.bbox().inflated(node_distance(tol))
-            } else {
-                Aabb::EMPTY
-            }
-        })
+        .map(|&i| elements[i].segment.bbox().inflated(node_distance(tol)))
         .collect();
     let index = BoxIndex::new(&boxes);
-    for (j, e) in elements.iter().enumerate() {
+    for &j in &live {
         if !alive[j] {
             continue;
         }
-        for i in index.intersecting(&e.segment.bbox()) {
+        let e = &elements[j];
+        for i in index.intersecting(&e.segment.bbox()).map(|k| live[k]) {
             if i == j || !alive[i] || elements[i].layer != e.layer {
                 continue;
             }
