@@ -30,6 +30,9 @@ pub struct SpanPolynomial {
     rate: f64,
     /// Coefficients of s^0 … s^degree of (x·w, y·w, w).
     coefficients: [[f64; 3]; MAX_DEGREE + 1],
+    /// False when w is 1 throughout (every weight 1, as in most drawings): the point is then
+    /// (x·w, y·w) itself, and the division by w, the longest step of an evaluation, is left out.
+    rational: bool,
 }
 
 impl SpanPolynomial {
@@ -60,11 +63,13 @@ impl SpanPolynomial {
                 *cv *= f;
             }
         }
+        let rational = coefficients[0][2] != 1.0 || coefficients[1..=p].iter().any(|c| c[2] != 0.0);
         SpanPolynomial {
             degree: p,
             start: a,
             rate: 1.0 / (b - a),
             coefficients,
+            rational,
         }
     }
 
@@ -72,6 +77,15 @@ impl SpanPolynomial {
     pub fn point(&self, t: f64) -> Point {
         let s = (t - self.start) * self.rate;
         let c = &self.coefficients;
+        if !self.rational {
+            // With w = 1 exactly, n · (1 / w) is n exactly: the same point as below.
+            let (mut x, mut y) = (c[self.degree][0], c[self.degree][1]);
+            for cj in c[..self.degree].iter().rev() {
+                x = x * s + cj[0];
+                y = y * s + cj[1];
+            }
+            return Point::new(x, y);
+        }
         let mut n = c[self.degree];
         for cj in c[..self.degree].iter().rev() {
             for (nv, cv) in n.iter_mut().zip(cj) {
@@ -267,7 +281,8 @@ mod tests {
             (degree + 1..degree + 8).prop_flat_map(move |n| {
                 (
                     prop::collection::vec((-100.0..100.0f64, -100.0..100.0f64), n),
-                    prop::collection::vec(0.2..5.0f64, n),
+                    // Every weight 1 (a plain B-spline, evaluated without dividing) or not.
+                    prop_oneof![Just(vec![1.0; n]), prop::collection::vec(0.2..5.0f64, n)],
                     // Zero gaps give repeated knots.
                     prop::collection::vec(prop_oneof![Just(0.0), 0.1..3.0f64], n + degree + 1),
                 )
@@ -311,11 +326,31 @@ mod tests {
             weights: vec![1.0, r, 1.0],
         };
         let poly = SpanPolynomial::new(&s, 2);
+        assert!(poly.rational);
         for i in 0..=10 {
+            assert!((poly.point(i as f64 / 10.0).to_vector().length() - 1.0).abs() < 1e-12);
             let (p, d1, _) = poly.derivatives(i as f64 / 10.0);
             assert!((p.to_vector().length() - 1.0).abs() < 1e-12);
             // The tangent is perpendicular to the radius.
             assert!(p.to_vector().dot(d1).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_spline_with_every_weight_one_is_evaluated_without_its_weights() {
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 2.0),
+            Point::new(3.0, 3.0),
+            Point::new(4.0, 0.0),
+        ];
+        let s = Nurbs::through(&pts).expect("distinct points");
+        for (k, a, b) in s.spans() {
+            let poly = SpanPolynomial::new(&s, k);
+            assert!(!poly.rational);
+            let t = 0.5 * (a + b);
+            assert!(poly.point(t).distance(s.point_in_span(k, t)) < 1e-12);
+            assert_eq!(poly.point(t), poly.derivatives(t).0);
         }
     }
 }
