@@ -99,31 +99,25 @@ pub fn add_cleanups(
 
 /// `f` over `inputs` on every core, results in order.
 fn parallel<T: Send>(inputs: &[(f64, usize)], f: impl Fn((f64, usize)) -> T + Sync) -> Vec<T> {
-    let workers = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(inputs.len());
+    let workers = crate::parallel::cores().min(inputs.len());
     if workers <= 1 {
         return inputs.iter().map(|&d| f(d)).collect();
     }
     let f = &f;
+    let share = move |w: usize| {
+        inputs
+            .iter()
+            .enumerate()
+            .skip(w)
+            .step_by(workers)
+            .map(|(i, &d)| (i, f(d)))
+            .collect::<Vec<_>>()
+    };
     std::thread::scope(|s| {
-        let handles: Vec<_> = (0..workers)
-            .map(|w| {
-                s.spawn(move || {
-                    inputs
-                        .iter()
-                        .enumerate()
-                        .skip(w)
-                        .step_by(workers)
-                        .map(|(i, &d)| (i, f(d)))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        let mut all: Vec<(usize, T)> = handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_default())
-            .collect();
+        // The calling thread takes the first share.
+        let handles: Vec<_> = (1..workers).map(|w| s.spawn(move || share(w))).collect();
+        let mut all: Vec<(usize, T)> = share(0);
+        all.extend(handles.into_iter().flat_map(|h| h.join().unwrap_or_default()));
         all.sort_by_key(|(i, _)| *i);
         all.into_iter().map(|(_, t)| t).collect()
     })

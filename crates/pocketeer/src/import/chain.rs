@@ -237,7 +237,9 @@ fn take_closed_polylines(elements: &[Element], alive: &mut [bool], tol: &Toleran
         .collect();
     // Each closed polyline is a contour alone, and traced art has thousands: shared out among
     // the cores, taken in order.
-    let taken = crate::parallel::map(&groups, |members| closed_polyline(elements, members, tol));
+    let taken = crate::parallel::map_sized(&groups, Vec::len, |members| {
+        closed_polyline(elements, members, tol)
+    });
     for (members, t) in groups.into_iter().zip(taken) {
         match t {
             ClosedPolyline::Contour(contour) => out.contours.push(ChainedContour {

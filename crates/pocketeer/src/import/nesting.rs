@@ -160,7 +160,11 @@ fn simplified(
     let mut simple = Vec::with_capacity(contours.len());
     let mut origin = Vec::with_capacity(contours.len());
     // Each contour is checked for crossing itself alone.
-    let checked = crate::parallel::map(contours, |c| make_simple(&c.contour, tol));
+    let checked = crate::parallel::map_sized(
+        contours,
+        |c| c.contour.segments.len(),
+        |c| make_simple(&c.contour, tol),
+    );
     for (k, (c, made_simple)) in contours.iter().zip(checked).enumerate() {
         match (made_simple, fill) {
             (Ok((contour, removed)), _) => {

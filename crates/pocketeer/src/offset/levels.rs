@@ -24,9 +24,7 @@ pub fn offsets_until_empty(
     let workers = if elements * distances.len() < 20_000 {
         1
     } else {
-        std::thread::available_parallelism()
-            .map_or(1, |n| n.get())
-            .min(distances.len())
+        crate::parallel::cores().min(distances.len())
     };
     let next = AtomicUsize::new(0);
     // Index of the first empty level found so far: nothing at or beyond it is needed.
@@ -77,10 +75,12 @@ pub fn offsets_until_empty(
     if workers <= 1 {
         work();
     } else {
+        // The calling thread is one of the workers.
         std::thread::scope(|s| {
-            for _ in 0..workers {
+            for _ in 1..workers {
                 s.spawn(work);
             }
+            work();
         });
     }
     if let Some(e) = failed.into_inner().ok().flatten() {
