@@ -238,9 +238,9 @@ fn main() {
     let tol = Tolerance::default();
     if freecad_dir.is_some() {
         println!(
-            "| drawing | time s | FreeCAD time s | ratio | retracts | FreeCAD retracts | cutting mm | FreeCAD cutting mm | FreeCAD gouge mm | FreeCAD thickest leftover mm |"
+            "| drawing | time s | FreeCAD time s | ratio | loops and clean-up alone s | its ratio | retracts | FreeCAD retracts | cutting mm | FreeCAD cutting mm | FreeCAD gouge mm | FreeCAD thickest leftover mm |"
         );
-        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     } else {
         println!(
             "| drawing | time s | time s, 0.5 s a retract | cutting mm | rapid mm | retracts | p95 engagement ° | p95 touching stock ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
@@ -248,7 +248,7 @@ fn main() {
         println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
-    let (mut freecad_time, mut ours_beside_freecad) = (0.0, 0.0);
+    let (mut freecad_time, mut ours_beside_freecad, mut paths_time) = (0.0, 0.0, 0.0);
     // With --dxf: each drawing's file name, tool diameter and stepover (%), for the script
     // that has FreeCAD pocket them.
     let mut manifest = String::new();
@@ -315,16 +315,22 @@ fn main() {
             let theirs = std::fs::read_to_string(&path)
                 .map_err(|e| format!("{}: {e}", path.display()))
                 .and_then(|t| checked(&d, &t, &tol));
+            // The least time any linking of these paths can take: every loop and clean-up
+            // path at the feed, with no entry, link or rapid.
+            let paths = paths_seconds(&job.plans);
             match theirs {
                 Ok(f) => {
                     freecad_time += f.seconds;
                     ours_beside_freecad += report.seconds;
+                    paths_time += paths;
                     println!(
-                        "| {} | {:.1} | {:.1} | {:.3} | {} | {} | {:.1} | {:.1} | {:.4} | {:.4} |",
+                        "| {} | {:.1} | {:.1} | {:.3} | {:.1} | {:.3} | {} | {} | {:.1} | {:.1} | {:.4} | {:.4} |",
                         d.name,
                         report.seconds,
                         f.seconds,
                         report.seconds / f.seconds,
+                        paths,
+                        paths / f.seconds,
                         report.retracts,
                         f.retracts,
                         report.cut_length,
@@ -358,12 +364,32 @@ fn main() {
     }
     if freecad_dir.is_some() {
         println!(
-            "| total | {ours_beside_freecad:.1} | {freecad_time:.1} | {:.3} | | | | | | |",
-            ours_beside_freecad / freecad_time
+            "| total | {ours_beside_freecad:.1} | {freecad_time:.1} | {:.3} | {paths_time:.1} | {:.3} | | | | | | |",
+            ours_beside_freecad / freecad_time,
+            paths_time / freecad_time
         );
     } else {
         println!("| total | {total_time:.1} | {total_with:.1} | | | {total_retracts} | | | | | | |");
     }
+}
+
+/// Seconds to cut the loops and clean-up paths of `plans` at the feed, nothing else.
+fn paths_seconds(plans: &[pocketeer::clear::ClearPlan]) -> f64 {
+    let length: f64 = plans
+        .iter()
+        .flat_map(|p| &p.parts)
+        .map(|part| {
+            let loops: f64 = part.loops().flat_map(|c| &c.segments).map(|s| s.length()).sum();
+            let cleanups: f64 = part
+                .cleanups
+                .iter()
+                .flat_map(|c| &c.segments)
+                .map(|s| s.length())
+                .sum();
+            loops + cleanups
+        })
+        .sum();
+    length / FEED * 60.0
 }
 
 /// The program `text` replayed against the drawing: time at the fixed rates from lengths alone
