@@ -91,12 +91,15 @@ fn our_programs_pass_at_40_and_83_percent() {
     }
 }
 
-/// Our program with `extra` lines inserted after the last feed move at the final depth.
+/// Our program with `extra` lines inserted after the last feed move at the final depth (a
+/// line or an arc: what follows is the retract, which starts wherever the tool is).
 fn with_inserted(program: &str, extra: &[&str]) -> (String, usize) {
     let lines: Vec<&str> = program.lines().collect();
     let at = lines
         .iter()
-        .rposition(|l| l.starts_with("G1 X") || l.starts_with("G1 Y"))
+        .rposition(|l| {
+            ["G1 ", "G2 ", "G3 "].iter().any(|g| l.starts_with(g)) && (l.contains('X') || l.contains('Y'))
+        })
         .expect("a feed move");
     let mut out: Vec<&str> = lines[..=at].to_vec();
     out.extend_from_slice(extra);

@@ -30,7 +30,7 @@ pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
-use crate::geom::{bbox_of, Aabb, Point, Segment, Tolerance};
+use crate::geom::{bbox_of, Aabb, BoxIndex, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
 
@@ -236,6 +236,8 @@ pub fn link_with(
         down: false,
         last: (Vec::new(), false),
         boxes: Vec::new(),
+        cut_early: std::collections::HashSet::new(),
+        enclosed: std::collections::HashMap::new(),
     };
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
@@ -292,6 +294,13 @@ struct Linker<'a> {
     /// The boxes of the plan's parts (their outer loops), by part: asked for at every
     /// choice of the next part and landing, and each a pass over its loop.
     boxes: Vec<Aabb>,
+    /// Loops round islands (part, index among its holes) cut in this pass before their part,
+    /// each right after the loop round the same islands one level in (see
+    /// [`Linker::cut_enclosed_holes`]).
+    cut_early: std::collections::HashSet<(usize, usize)>,
+    /// By part, for each of its loops round islands, the loop of its parent it encloses
+    /// alone (see [`Linker::enclosed_hole`]): found once a pass.
+    enclosed: std::collections::HashMap<usize, Vec<Option<usize>>>,
 }
 
 impl<'a> Linker<'a> {
@@ -317,6 +326,8 @@ impl<'a> Linker<'a> {
     /// without entries of their own. The tree is walked with a stack of its own, not by
     /// recursion: a pocket thousands of stepovers wide nests as many parts.
     fn cut(&mut self, n: usize) {
+        self.cut_early.clear();
+        self.enclosed.clear();
         let plan = self.plan();
         let mut stack = vec![Visit::new(n, plan)];
         while let Some(visit) = stack.last_mut() {
@@ -455,11 +466,15 @@ impl<'a> Linker<'a> {
     /// engagement rose from 140° to 141°.)
     fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
         let part = &self.plan().parts[n];
-        // The part's loops, each with the clean-up paths cut on the way round it.
+        // The part's loops, each with the clean-up paths cut on the way round it, and the
+        // loops round islands with the index among the part's holes (those cut already, right
+        // after the loop enclosing them one level in, left out).
         let mut outer = (loop_path(&part.outer.segments), Vec::new());
-        let mut items: Vec<(Path, Vec<Path>)> = (part.holes.iter())
-            .map(|h| (loop_path(&h.segments), Vec::new()))
-            .collect();
+        let (mut items, mut hole_of): (Vec<_>, Vec<_>) = (part.holes.iter())
+            .enumerate()
+            .filter(|&(j, _)| !self.cut_early.contains(&(n, j)))
+            .map(|(j, h)| ((loop_path(&h.segments), Vec::new()), Some(j)))
+            .unzip();
         let mut loose = Vec::new();
         for c in &part.cleanups {
             match self.host_of(c, &outer.0, &items) {
@@ -468,6 +483,7 @@ impl<'a> Linker<'a> {
                 None => loose.push((c.clone(), Vec::new())),
             }
         }
+        hole_of.extend(loose.iter().map(|_| None));
         items.extend(loose);
         let here = self.here();
         let to_outer = walk::distance_to(&outer.0, here);
@@ -488,11 +504,84 @@ impl<'a> Linker<'a> {
             );
             boxes.swap_remove(k);
             let (item, on_the_way) = items.swap_remove(k);
+            let hole = hole_of.swap_remove(k);
             self.cut_path_with(part, &item, &on_the_way, first, reach);
             first = false;
+            if let Some(j) = hole {
+                self.cut_enclosed_holes(n, j);
+            }
         }
         if !outer_first {
             self.cut_path_with(part, &outer.0, &outer.1, first, reach);
+        }
+    }
+
+    /// The loop round islands of the parent of part `n` that `n`'s loop round islands `j`
+    /// encloses, when it encloses one only: that loop lies between the islands and `n`'s, and
+    /// is cut right after it (see [`Linker::cut_enclosed_holes`]). None when the parent has
+    /// clean-up paths (they are cut on the way round its loops) or a finishing loop with
+    /// leads, and for a loop round many islands (the merged loop round a grid of them), whose
+    /// islands' loops the parent links nearest first.
+    fn enclosed_hole(&mut self, n: usize, j: usize) -> Option<usize> {
+        let plan = self.plan();
+        let found = self.enclosed.entry(n).or_insert_with(|| {
+            let part = &plan.parts[n];
+            let mut found = vec![None; part.holes.len()];
+            let Some(parent) = part.parent.map(|p| &plan.parts[p]) else {
+                return found;
+            };
+            if parent.holes.is_empty() || !parent.cleanups.is_empty() || plan.allowance > 0.0 {
+                return found;
+            }
+            let boxes: Vec<Aabb> = parent.holes.iter().map(|h| h.bbox()).collect();
+            let index = BoxIndex::new(&boxes);
+            for (i, h) in part.holes.iter().enumerate() {
+                let b = h.bbox();
+                let inside: Vec<usize> = index
+                    .intersecting(&b)
+                    .filter(|&k| {
+                        b.contains_box(&boxes[k])
+                            && (parent.holes[k].segments.first())
+                                .is_some_and(|s| h.winding_number(s.start()) != 0)
+                    })
+                    .collect();
+                if let [k] = inside[..] {
+                    found[i] = Some(k);
+                }
+            }
+            found
+        });
+        found.get(j).copied().flatten()
+    }
+
+    /// After the loop round islands `j` of part `n`: the loops round the same islands in the
+    /// parts around `n`, each enclosing the next, cut one after the other towards the islands
+    /// from where the tool is, instead of each with its own part, reached by a link of its
+    /// own (on the 300-hole plate the loops round the holes at two levels were two chains of
+    /// 300 links); then back to where the walk of `n`'s loop ended, so that the links onward
+    /// are the same as without them. Cutting them early changes nothing they cut: a loop's
+    /// tool disc reaches no farther from its islands than the loop it follows plus the
+    /// radius, where everything the other loops of that loop's part could clear is farther out.
+    fn cut_enclosed_holes(&mut self, n: usize, j: usize) {
+        let (back_to, last) = (self.here(), self.last.clone());
+        let (mut at, mut hole, mut nearest_walls) = (n, j, None);
+        while let (Some(parent), Some(h)) = (self.plan().parts[at].parent, self.enclosed_hole(at, hole)) {
+            if !self.cut_early.insert((parent, h)) {
+                break;
+            }
+            let part = &self.plan().parts[parent];
+            let reach = Reach {
+                distance: part.distance,
+                cut: &[],
+            };
+            self.cut_path(part, &loop_path(&part.holes[h].segments), false, reach);
+            (at, hole, nearest_walls) = (parent, h, Some(part.distance));
+        }
+        if let Some(d) = nearest_walls {
+            if self.down && self.stays_inside(self.here(), back_to, d) {
+                self.path.line(Point3::at(back_to, self.z), Feed::Cut);
+                self.last = last;
+            }
         }
     }
 

@@ -197,6 +197,51 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
 }
 
 #[test]
+fn the_loops_round_one_island_at_two_levels_are_cut_one_after_the_other() {
+    // A plate of 4 x 3 holes at a 20 mm pitch: at 5.4 mm from the walls the loops round the
+    // two inner holes still lie in one part with the others, at 3 mm inside them. Each inner
+    // hole's loop at 3 mm is cut right after its loop at 5.4 mm, 2.4 mm away, instead of with
+    // the other loops at 3 mm, each reached by a link of its own.
+    let hole =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
+    let centres: Vec<Point> = (0..4)
+        .flat_map(|i| (0..3).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
+        .collect();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 80.0, 60.0),
+        islands: centres.iter().map(|c| hole(c.x, c.y)).collect(),
+    };
+    let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    // The arcs at depth round a hole's centre at 3 and 5.4 mm from its wall, in order.
+    let mut rounds: Vec<(usize, bool)> = Vec::new();
+    let mut at = l.toolpath.start;
+    for m in &l.toolpath.moves {
+        if let Move::Arc { to, center, .. } = *m {
+            let r = center.distance(at.xy());
+            let near = |d: f64| (r - 4.0 - d).abs() < 1e-6;
+            if let Some(k) = centres.iter().position(|c| c.distance(center) < 1e-6) {
+                if at.z == -2.0 && to.z == -2.0 && (near(3.0) || near(5.4)) {
+                    let round = (k, near(5.4));
+                    if rounds.last() != Some(&round) {
+                        rounds.push(round);
+                    }
+                }
+            }
+        }
+        at = m.to();
+    }
+    for inner in [Point::new(30.0, 30.0), Point::new(50.0, 30.0)] {
+        let k = centres.iter().position(|&c| c == inner).unwrap();
+        let outer_loop = rounds.iter().position(|&r| r == (k, true)).unwrap();
+        assert_eq!(
+            rounds.get(outer_loop + 1),
+            Some(&(k, false)),
+            "hole {k}: {rounds:?}"
+        );
+    }
+}
+
+#[test]
 fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
     // Two islands 60 mm apart: their loops at the walls' level are 46 mm apart, 2.8 s at the
     // cutting feed against about 1.3 s up, across at rapid, down and a retract's half second.
