@@ -117,7 +117,13 @@ fn parallel<T: Send>(inputs: &[(f64, usize)], f: impl Fn((f64, usize)) -> T + Sy
         // The calling thread takes the first share.
         let handles: Vec<_> = (1..workers).map(|w| s.spawn(move || share(w))).collect();
         let mut all: Vec<(usize, T)> = share(0);
-        all.extend(handles.into_iter().flat_map(|h| h.join().unwrap_or_default()));
+        // A helper only panics if `f` does, which the calling thread would too: its panic
+        // goes on (dropping its results would leave the levels' clean-up paths unmatched).
+        all.extend(
+            handles
+                .into_iter()
+                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))),
+        );
         all.sort_by_key(|(i, _)| *i);
         all.into_iter().map(|(_, t)| t).collect()
     })
