@@ -93,11 +93,25 @@ impl Contour {
         if (area > 0.0) == ccw {
             return area;
         }
+        self.reverse();
+        -area
+    }
+
+    /// Runs the contour the other way, in place ([`Contour::reversed`] without a copy).
+    ///
+    /// ```
+    /// use pocketeer::geom::{Contour, Point};
+    /// let p = Point::new;
+    /// let mut c = Contour::polygon(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]);
+    /// let copy = c.reversed();
+    /// c.reverse();
+    /// assert_eq!(c, copy);
+    /// ```
+    pub fn reverse(&mut self) {
         self.segments.reverse();
         for s in &mut self.segments {
             *s = s.reversed();
         }
-        -area
     }
 
     /// `count` points spread evenly along the contour by length (the middles of `count` equal

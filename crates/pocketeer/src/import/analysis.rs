@@ -78,6 +78,10 @@ fn closed_across_gap(o: &OpenChain) -> Option<Contour> {
 /// contours or lies inside one: pocketing around it would cut its islands as if they were
 /// pockets, or cut through the island it was meant to be.
 fn refuse_broken_outlines(drawing: &Drawing, chains: &Chains) -> Result<(), ImportError> {
+    if chains.open.is_empty() {
+        // Nothing to judge: the contours' boxes below are a pass over every segment.
+        return Ok(());
+    }
     let boxes: Vec<Aabb> = chains.contours.iter().map(|c| c.contour.bbox()).collect();
     let index = BoxIndex::new(&boxes);
     for o in &chains.open {

@@ -83,6 +83,8 @@ pub fn find_pockets(
     let drawn = contours.len();
     let contours = &simple[..];
     let contour_boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+    // Each contour's area once: the depths order by it, and a lone contour keeps it (turned).
+    let areas: Vec<f64> = contours.iter().map(|c| c.contour.signed_area()).collect();
     let meetings = Meetings::find(contours, &contour_boxes, tol);
     let crossing: HashSet<(usize, usize)> = meetings
         .crossings
@@ -93,6 +95,7 @@ pub fn find_pockets(
     let contour_index = BoxIndex::new(&contour_boxes);
     let depths = nesting_depths(
         contours,
+        &areas,
         (&contour_boxes, &contour_index),
         &crossing,
         &locator,
@@ -119,8 +122,11 @@ pub fn find_pockets(
         .map(|l| match l {
             Loop::Alone { contour, ccw } => {
                 let mut c = std::mem::take(&mut simple[contour].contour);
-                let area = c.orient(ccw);
-                (c, area)
+                let area = areas[contour];
+                if (area > 0.0) != ccw {
+                    c.reverse();
+                }
+                (c, if (area > 0.0) == ccw { area } else { -area })
             }
             Loop::Stitched(c) => {
                 let area = c.signed_area();
@@ -363,13 +369,14 @@ enum Loop {
 /// the same depth and are merged.
 fn nesting_depths(
     contours: &[ChainedContour],
+    signed_areas: &[f64],
     (boxes, index): (&[Aabb], &BoxIndex),
     crossing: &HashSet<(usize, usize)>,
     locator: &Locator,
     tol: &Tolerance,
 ) -> Vec<usize> {
     let n = contours.len();
-    let areas: Vec<f64> = contours.iter().map(|c| c.contour.signed_area().abs()).collect();
+    let areas: Vec<f64> = signed_areas.iter().map(|a| a.abs()).collect();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]));
     let mut depths = vec![0usize; n];
