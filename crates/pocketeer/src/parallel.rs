@@ -53,6 +53,15 @@ pub(crate) fn map_sized<T: Sync, R: Send>(
     shared(items, f)
 }
 
+/// [`map`] for a few items, each worth a thread (a level of offsets): shared out whenever
+/// there are two or more.
+pub(crate) fn map_each<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    if items.len() < 2 {
+        return items.iter().map(f).collect();
+    }
+    shared(items, f)
+}
+
 /// `items.iter().map(f).collect()` shared out among [`cores`] threads, the calling one among
 /// them.
 fn shared<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
@@ -98,6 +107,7 @@ mod tests {
             assert_eq!(squares, items.iter().map(|x| x * x).collect::<Vec<_>>());
             let sized = super::map_sized(&items, |_| 16, |x| x * x);
             assert_eq!(sized, squares);
+            assert_eq!(super::map_each(&items, |x| x * x), squares);
         }
     }
 

@@ -54,7 +54,7 @@ pub fn add_cleanups(
         .map(|&k| (0.5 * (plan.distances[k] + nominal(k)), k))
         .collect();
     // Each half level from the sources of the level just outside it.
-    let half_loops = parallel(&half, |(d, k)| {
+    let half_loops = crate::parallel::map_each(&half, |&(d, k)| {
         pocket
             .offset_with_sources(d, tol, sources.get(k).map(|s| &**s))
             .map(|l| l.0)
@@ -95,38 +95,6 @@ pub fn add_cleanups(
         plan.parts[owner].cleanups.push(path);
     }
     Ok(())
-}
-
-/// `f` over `inputs` on every core, results in order.
-fn parallel<T: Send>(inputs: &[(f64, usize)], f: impl Fn((f64, usize)) -> T + Sync) -> Vec<T> {
-    let workers = crate::parallel::cores().min(inputs.len());
-    if workers <= 1 {
-        return inputs.iter().map(|&d| f(d)).collect();
-    }
-    let f = &f;
-    let share = move |w: usize| {
-        inputs
-            .iter()
-            .enumerate()
-            .skip(w)
-            .step_by(workers)
-            .map(|(i, &d)| (i, f(d)))
-            .collect::<Vec<_>>()
-    };
-    std::thread::scope(|s| {
-        // The calling thread takes the first share.
-        let handles: Vec<_> = (1..workers).map(|w| s.spawn(move || share(w))).collect();
-        let mut all: Vec<(usize, T)> = share(0);
-        // A helper only panics if `f` does, which the calling thread would too: its panic
-        // goes on (dropping its results would leave the levels' clean-up paths unmatched).
-        all.extend(
-            handles
-                .into_iter()
-                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))),
-        );
-        all.sort_by_key(|(i, _)| *i);
-        all.into_iter().map(|(_, t)| t).collect()
-    })
 }
 
 /// One gap between two levels, ready for coverage tests.

@@ -72,29 +72,10 @@ impl Contour {
     /// assert_eq!(cw.clone().oriented(false), cw);
     /// ```
     pub fn oriented(mut self, ccw: bool) -> Contour {
-        self.orient(ccw);
-        self
-    }
-
-    /// Turns the contour in place to run counter-clockwise when `ccw`, clockwise otherwise,
-    /// and returns its signed area after: one pass over the segments where
-    /// [`Contour::oriented`] and [`Contour::signed_area`] would take two, and no copy.
-    ///
-    /// ```
-    /// use pocketeer::geom::{Contour, Point};
-    /// let p = Point::new;
-    /// let mut c = Contour::polygon(&[p(0.0, 0.0), p(0.0, 1.0), p(1.0, 1.0), p(1.0, 0.0)]);
-    /// assert_eq!(c.orient(true), 1.0);
-    /// assert!(c.is_ccw());
-    /// assert_eq!(c.orient(false), -1.0);
-    /// ```
-    pub fn orient(&mut self, ccw: bool) -> f64 {
-        let area = self.signed_area();
-        if (area > 0.0) == ccw {
-            return area;
+        if self.is_ccw() != ccw {
+            self.reverse();
         }
-        self.reverse();
-        -area
+        self
     }
 
     /// Runs the contour the other way, in place ([`Contour::reversed`] without a copy).

@@ -49,11 +49,7 @@ impl<'a> Fields<'a> {
         Some(Point::new(self.real(code)?, self.real_or(code + 10, 0.0)))
     }
     fn extrusion(&self) -> [f64; 3] {
-        [
-            self.real_or(210, 0.0),
-            self.real_or(220, 0.0),
-            self.real_or(230, 1.0),
-        ]
+        extrusion([self.real(210), self.real(220), self.real(230)])
     }
     fn ocs(&self, elevation: f64) -> Affine {
         ocs_to_world(self.extrusion(), elevation)
@@ -180,7 +176,7 @@ fn lwpolyline(e: &RawEntity, emit: &mut dyn FnMut(Curve)) -> Drawn {
     let mut verts: Vec<(Point, f64)> = Vec::new();
     // The entity's own values, first of each as everywhere else.
     let (mut flags, mut elevation) = (None, None);
-    let mut extrusion = [None; 3];
+    let mut extrusion_groups = [None; 3];
     for g in e.groups() {
         match g.code {
             10 => verts.push((Point::new(g.real().unwrap_or(f64::NAN), 0.0), 0.0)),
@@ -198,19 +194,15 @@ fn lwpolyline(e: &RawEntity, emit: &mut dyn FnMut(Curve)) -> Drawn {
             38 => elevation = elevation.or(Some(g)),
             210 | 220 | 230 => {
                 let k = (g.code / 10 - 21) as usize;
-                extrusion[k] = extrusion[k].or(Some(g));
+                extrusion_groups[k] = extrusion_groups[k].or(Some(g));
             }
             _ => {}
         }
     }
     let closed = flags.and_then(|g| g.int()).unwrap_or(0) & 1 == 1;
-    let value = |g: Option<Group>, default: f64| g.and_then(|g| g.real()).unwrap_or(default);
-    let normal = [
-        value(extrusion[0], 0.0),
-        value(extrusion[1], 0.0),
-        value(extrusion[2], 1.0),
-    ];
-    polyline(&verts, closed, &ocs_to_world(normal, value(elevation, 0.0)), emit);
+    let normal = extrusion(extrusion_groups.map(|g| g.and_then(|g| g.real())));
+    let elevation = elevation.and_then(|g| g.real()).unwrap_or(0.0);
+    polyline(&verts, closed, &ocs_to_world(normal, elevation), emit);
     Drawn::Curves { closed }
 }
 
@@ -242,6 +234,12 @@ fn old_polyline(e: &RawEntity, f: &Fields, emit: &mut dyn FnMut(Curve)) -> Resul
     let closed = flags & 1 == 1;
     polyline(&verts, closed, &m, emit);
     Ok(Drawn::Curves { closed })
+}
+
+/// The extrusion direction from the values of groups 210, 220 and 230, DXF's (0, 0, 1) for
+/// those absent.
+fn extrusion([x, y, z]: [Option<f64>; 3]) -> [f64; 3] {
+    [x.unwrap_or(0.0), y.unwrap_or(0.0), z.unwrap_or(1.0)]
 }
 
 /// Lines and bulge arcs through `verts` (point, bulge to the next), mapped by `m`.

@@ -346,17 +346,14 @@ fn read_entities<'a>(cur: &mut Cursor<'a>, stop: &[&str]) -> (Vec<RawEntity<'a>>
 /// The entity type a `0` group names, upper case: borrowed from the file when it is written
 /// so, as it nearly always is.
 fn entity_kind<'a>(g: &Group<'a>) -> Cow<'a, str> {
-    match g.value {
-        super::Value::Text(t) => match std::str::from_utf8(t) {
-            Ok(s)
-                if !s
-                    .bytes()
-                    .any(|b| b.is_ascii_lowercase() || !b.is_ascii() || b.is_ascii_whitespace()) =>
-            {
-                Cow::Borrowed(s)
+    if let super::Value::Text(t) = g.value {
+        let as_written = |b: &u8| b.is_ascii() && !b.is_ascii_lowercase() && !b.is_ascii_whitespace();
+        if t.iter().all(as_written) {
+            // ASCII, hence UTF-8.
+            if let Ok(s) = std::str::from_utf8(t) {
+                return Cow::Borrowed(s);
             }
-            _ => Cow::Owned(g.text().trim().to_uppercase()),
-        },
-        _ => Cow::Owned(g.text().trim().to_uppercase()),
+        }
     }
+    Cow::Owned(g.text().trim().to_uppercase())
 }
