@@ -327,6 +327,50 @@ mod tests {
     }
 
     #[test]
+    fn a_part_in_the_space_between_islands_is_the_child_of_the_part_around_it_there() {
+        // 3 x 3 islands of radius 5 at a 20 mm pitch, a 6 mm tool, 2.4 mm stepover: the loops
+        // at 5.4 mm round the islands merge into one, a hole of the part along the wall, and
+        // leave four parts between four islands each, inside that merged hole. Their parts
+        // one level in lie inside the wall part's outer loop too, but in its hole: their
+        // parent is the part between the islands (it was the wall part, the first outer loop
+        // found round them).
+        let islands = (0..9)
+            .map(|k| {
+                let c = Point::new(20.0 + 20.0 * (k % 3) as f64, 20.0 + 20.0 * (k / 3) as f64);
+                Contour::new(vec![Segment::Arc(Arc::new(c, 5.0, 0.0, -std::f64::consts::TAU))])
+            })
+            .collect();
+        let pocket = Pocket {
+            boundary: rect(80.0, 80.0),
+            islands,
+        };
+        let params = ClearParams {
+            tool_radius: 3.0,
+            stepover: 2.4,
+            allowance: 0.0,
+        };
+        let plan = plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+        let mut between = 0;
+        for part in &plan.parts {
+            let Some(parent) = part.parent.map(|i| &plan.parts[i]) else {
+                continue;
+            };
+            let p = part.outer.segments[0].start();
+            assert!(parent.outer.contains(p), "inside its parent's outer loop");
+            assert!(
+                parent.holes.iter().all(|h| h.winding_number(p) == 0),
+                "a part at {p:?} (level {}) lies in a hole of its parent",
+                part.level
+            );
+            let b = part.outer.bbox();
+            between += usize::from(
+                b.min.x > 20.0 && b.max.x < 60.0 && b.min.y > 20.0 && b.max.y < 60.0 && part.level == 2,
+            );
+        }
+        assert_eq!(between, 4, "a level-2 part in each space between four islands");
+    }
+
+    #[test]
     fn allowance_adds_a_finishing_level_at_the_tool_radius() {
         let disc = Contour::new(vec![Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 20.0))]);
         let pocket = Pocket {

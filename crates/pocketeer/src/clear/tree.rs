@@ -42,8 +42,13 @@ pub fn build(levels: Vec<Vec<Contour>>, distances: &[f64]) -> ClearPlan {
     plan
 }
 
-/// The index among `candidates` of the part whose outer loop encloses `p` (the nearest by box
-/// when rounding puts `p` on no outer loop's inside).
+/// The index among `candidates` of the part whose outer loop encloses `p`, the innermost of
+/// those that do (the nearest by box when rounding puts `p` on no outer loop's inside).
+///
+/// The outer loops of one level do not cross, but one may lie inside a hole of another: the
+/// loop round the space between four islands lies inside the loop round all of them, where
+/// that merged loop is a hole of the part along the wall. A point inside both outer loops is
+/// in the inner one's part, whose box is the smaller.
 pub fn enclosing(parts: &[Part], candidates: &[usize], p: Point) -> usize {
     if candidates.len() == 1 {
         return candidates[0];
@@ -51,8 +56,8 @@ pub fn enclosing(parts: &[Part], candidates: &[usize], p: Point) -> usize {
     let inside = candidates
         .iter()
         .copied()
-        .filter(|&c| parts[c].outer.bbox().contains(p))
-        .find(|&c| parts[c].outer.contains(p));
+        .filter(|&c| parts[c].outer.bbox().contains(p) && parts[c].outer.contains(p))
+        .min_by(|&a, &b| box_area(&parts[a].outer.bbox()).total_cmp(&box_area(&parts[b].outer.bbox())));
     inside.unwrap_or_else(|| {
         candidates
             .iter()
@@ -64,6 +69,10 @@ pub fn enclosing(parts: &[Part], candidates: &[usize], p: Point) -> usize {
     })
 }
 
+fn box_area(b: &Aabb) -> f64 {
+    (b.max.x - b.min.x) * (b.max.y - b.min.y)
+}
+
 fn box_gap(b: &Aabb, p: Point) -> f64 {
     let dx = (b.min.x - p.x).max(p.x - b.max.x).max(0.0);
     let dy = (b.min.y - p.y).max(p.y - b.max.y).max(0.0);
@@ -73,9 +82,9 @@ fn box_gap(b: &Aabb, p: Point) -> f64 {
 /// Points of a hole tested against the outer loops.
 const HOLE_PROBES: usize = 8;
 
-/// Groups loops into parts: each clockwise loop goes with the counter-clockwise loop around it.
-/// Outer loops of one level never nest (the region of a pocket has no material inside its
-/// islands), so the enclosing outer loop is unique.
+/// Groups loops into parts: each clockwise loop goes with the counter-clockwise loop around it,
+/// the innermost when several are (an outer loop may lie inside a hole of another, see
+/// [`enclosing`]).
 fn parts(loops: Vec<Contour>) -> Vec<(Contour, Vec<Contour>)> {
     let (outers, holes): (Vec<Contour>, Vec<Contour>) =
         loops.into_iter().partition(|l| l.signed_area() > 0.0);
@@ -98,7 +107,10 @@ fn parts(loops: Vec<Contour>) -> Vec<(Contour, Vec<Contour>)> {
                     (i, inside)
                 })
                 .filter(|&(_, inside)| inside > 0)
-                .max_by_key(|&(_, inside)| inside)
+                .max_by(|a, b| {
+                    let area = |i: usize| box_area(&boxes[i]);
+                    a.1.cmp(&b.1).then(area(b.0).total_cmp(&area(a.0)))
+                })
                 .map(|(i, _)| i)
         };
         // A hole outside every outer loop cannot come from an offset; drop it rather than cut it.
