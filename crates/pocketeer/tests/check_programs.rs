@@ -94,11 +94,18 @@ fn our_programs_pass_at_40_and_83_percent() {
 /// Our program with `extra` lines inserted after the last feed move at the final depth (a
 /// line or an arc: what follows is the retract, which starts wherever the tool is).
 fn with_inserted(program: &str, extra: &[&str]) -> (String, usize) {
+    with_inserted_after(program, |_| true, extra)
+}
+
+/// [`with_inserted`] after the last feed move at the final depth whose line `after` accepts.
+fn with_inserted_after(program: &str, after: impl Fn(&str) -> bool, extra: &[&str]) -> (String, usize) {
     let lines: Vec<&str> = program.lines().collect();
     let at = lines
         .iter()
         .rposition(|l| {
-            ["G1 ", "G2 ", "G3 "].iter().any(|g| l.starts_with(g)) && (l.contains('X') || l.contains('Y'))
+            ["G1 ", "G2 ", "G3 "].iter().any(|g| l.starts_with(g))
+                && (l.contains('X') || l.contains('Y'))
+                && after(l)
         })
         .expect("a feed move");
     let mut out: Vec<&str> = lines[..=at].to_vec();
@@ -109,7 +116,13 @@ fn with_inserted(program: &str, extra: &[&str]) -> (String, usize) {
 
 #[test]
 fn a_move_too_close_to_the_wall_is_found_with_its_depth_and_line() {
-    let (program, line) = with_inserted(&our_program(&pocket(), 2.4), &["G1 X2.8 Y50", "G1 X3 Y50"]);
+    // After the move that ends on the wall loop's left side (X3): the planted moves stay
+    // beside it, clear of the islands, wherever the program ends.
+    let (program, line) = with_inserted_after(
+        &our_program(&pocket(), 2.4),
+        |l| l.starts_with("G1 X3.0000"),
+        &["G1 X2.8 Y50", "G1 X3 Y50"],
+    );
     let r = check(&pocket(), &program);
     assert!(!r.passed);
     assert!((r.gouge - 0.2).abs() < 1e-6, "{}", r.gouge);

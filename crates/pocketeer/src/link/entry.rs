@@ -47,14 +47,15 @@ pub fn find_helix(
     for c in candidates {
         // No radius is above the preferred one: a candidate that could not beat the best at
         // that radius is not measured (the wall distance is most of a search's time).
-        if best.is_some_and(|(_, s)| c.distance(target) - 1e3 * preferred >= s) {
+        let to_target = c.distance(target);
+        if best.is_some_and(|(_, s)| to_target - 1e3 * preferred >= s) {
             continue;
         }
         let clearance = pocket.distance(c);
         // A little less than the room there, for rounding.
         let radius = ((clearance - tool_radius) * (1.0 - 1e-6)).min(preferred);
         // The largest radius first, then the shortest way to the target.
-        let score = c.distance(target) - 1e3 * radius;
+        let score = to_target - 1e3 * radius;
         if clearance < part_distance || radius < smallest || best.is_some_and(|(_, s)| score >= s) {
             continue;
         }
@@ -70,22 +71,37 @@ pub fn find_helix(
 /// Points along `segments` every `step` of length (at least one per path), with the normal to
 /// their left: the cost follows the length, not the number of segments.
 pub fn samples(segments: &[Segment], step: f64) -> Vec<(Point, Vector)> {
+    let mut out = samples_within(segments, step, None);
+    if out.is_empty() {
+        if let Some(s) = segments.first() {
+            out.push((s.point_at(0.5), s.tangent_at(0.5).perp()));
+        }
+    }
+    out
+}
+
+/// The points of [`samples`] (the same spacing, from the same start) that lie in `disc`
+/// (centre, radius) when one is given; segments that cannot reach the disc are not sampled,
+/// so the cost follows the length inside it. None at all when no point is inside.
+pub fn samples_within(segments: &[Segment], step: f64, disc: Option<(Point, f64)>) -> Vec<(Point, Vector)> {
     let mut out = Vec::new();
     let mut next = 0.5 * step;
     let mut walked = 0.0;
     for s in segments {
         let len = s.length();
+        // Every point of a segment is within its length of its start.
+        let far = disc.is_some_and(|(c, r)| s.start().distance(c) > r + len);
         while next <= walked + len {
-            let t = if len > 0.0 { (next - walked) / len } else { 0.0 };
-            out.push((s.point_at(t), s.tangent_at(t).perp()));
+            if !far {
+                let t = if len > 0.0 { (next - walked) / len } else { 0.0 };
+                let p = s.point_at(t);
+                if disc.is_none_or(|(c, r)| p.distance(c) <= r) {
+                    out.push((p, s.tangent_at(t).perp()));
+                }
+            }
             next += step;
         }
         walked += len;
-    }
-    if out.is_empty() {
-        if let Some(s) = segments.first() {
-            out.push((s.point_at(0.5), s.tangent_at(0.5).perp()));
-        }
     }
     out
 }

@@ -38,6 +38,10 @@ use crate::toolpath::{Feed, Point3, Toolpath};
 /// deliberate slot, no wider than the tool, instead of a retract and a new entry.
 pub const MAX_SLOT_LINK_RADII: f64 = 8.0;
 
+/// How far from where a part is entered its paths are looked about for a helix, in tool
+/// radii, before all of them are (see [`Linker::find_helix`]).
+const HELIX_NEAR_RADII: [f64; 2] = [2.0, 10.0];
+
 /// How many of the nearest branches not cut yet are tried for a slot from where the tool is.
 const SLOT_CANDIDATES: usize = 4;
 
@@ -329,19 +333,25 @@ impl<'a> Linker<'a> {
         self.cut_early.clear();
         self.enclosed.clear();
         let plan = self.plan();
-        let mut stack = vec![Visit::new(n, plan)];
+        let mut stack = vec![self.visit(n)];
         while let Some(visit) = stack.last_mut() {
             if visit.before.is_empty() {
                 let Visit {
-                    part, after, cut_any, ..
+                    part,
+                    mut after,
+                    along,
+                    cut_any,
+                    ..
                 } = stack.pop().unwrap_or_else(|| unreachable!());
                 let children = &plan.parts[part].children;
-                let cut: Vec<usize> = children.iter().copied().filter(|c| !after.contains(c)).collect();
+                let cut: Vec<usize> = (children.iter().copied())
+                    .filter(|c| !after.contains(c) && !along.contains(c))
+                    .collect();
                 let reach = Reach {
                     distance: plan.parts[part].distance,
                     cut: &cut,
                 };
-                self.cut_part(part, !cut_any, reach);
+                after.extend(self.cut_part(part, !cut_any, reach, &along));
                 self.cut_small_leaves(part, after);
                 continue;
             }
@@ -370,8 +380,46 @@ impl<'a> Linker<'a> {
                 }
             };
             visit.cut_any = true;
-            stack.push(Visit::new(c, plan));
+            let next = self.visit(c);
+            stack.push(next);
         }
+    }
+
+    /// The visit of part `n`: its children to cut before it, less the leaves it cuts on its
+    /// way (see [`Linker::is_plain_leaf`]) when it has several children (a part with one
+    /// child gains nothing: that child is reached without a link either way).
+    fn visit(&self, n: usize) -> Visit {
+        let (plan, part) = (self.plan(), &self.plan().parts[n]);
+        let children = &part.children;
+        // A finishing loop has leads, not excursions.
+        let leads = part.level == 0 && plan.allowance > 0.0;
+        let (along, before) = if children.len() > 1 && !leads {
+            children.iter().partition(|&&c| self.is_plain_leaf(c))
+        } else {
+            (Vec::new(), children.clone())
+        };
+        Visit {
+            part: n,
+            before,
+            after: Vec::new(),
+            along,
+            cut_any: false,
+        }
+    }
+
+    /// True when the part `n` is a leaf its loop alone clears (nothing inside it, no island,
+    /// no clean-up path): such a leaf is cut after the loops of its parent around it, from the
+    /// last of them (see [`Linker::cut_part`]), instead of before them, reached by a slot or
+    /// an entry of its own. Its loop then cuts what its parent's loops left of it, where
+    /// before them it cut a slot in full stock; the price is that the parent's paths beside
+    /// it cut the width the leaf's loop would have cleared for them, full width. Measured on
+    /// the linking bench: the same p95 engagement on every drawing, a larger share of the
+    /// cutting above 150° on some (the 300-hole plate's 16.8 % -> 23.4 %, still below
+    /// FreeCAD's 25.9 %), and the plate 205 s faster (its slots between the diamonds between
+    /// four holes were 4 m).
+    fn is_plain_leaf(&self, n: usize) -> bool {
+        let part = &self.plan().parts[n];
+        part.parent.is_some() && part.children.is_empty() && part.holes.is_empty() && part.cleanups.is_empty()
     }
 
     /// Which of `children` (not cut yet) to cut next without an entry: of the nearest few,
@@ -464,7 +512,13 @@ impl<'a> Linker<'a> {
     /// crosses a ring once a level too, but cutting the outer loop between the others changed
     /// which loop takes the heavier cut where they come close: the 8-island rectangle's p95
     /// engagement rose from 140° to 141°.)
-    fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach) {
+    ///
+    /// Each of the leaves `along` is cut on the way round the last of these paths that passes
+    /// within a tool diameter of it (whose cut and the leaf's overlap), as an excursion from
+    /// its point nearest to the leaf when the leaf's loop is within the tool radius there
+    /// (the step across then cuts only what the leaf's loop is about to cut). The leaves
+    /// that are not, returned, are cut after the part from the stock it cleared.
+    fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach, along: &[usize]) -> Vec<usize> {
         let part = &self.plan().parts[n];
         // The part's loops, each with the clean-up paths cut on the way round it, and the
         // loops round islands with the index among the part's holes (those cut already, right
@@ -485,11 +539,16 @@ impl<'a> Linker<'a> {
         }
         hole_of.extend(loose.iter().map(|_| None));
         items.extend(loose);
+        // The leaves beside each path (the outer loop 0, the items from 1), and how many paths
+        // beside each leaf are still to cut.
+        let mut leaves = LeavesBeside::new(self, part, &outer.0, &items, along);
+        let mut ids: Vec<usize> = (1..=items.len()).collect();
         let here = self.here();
         let to_outer = walk::distance_to(&outer.0, here);
         let outer_first =
             !items.is_empty() && (items.iter()).all(|p| to_outer < walk::distance_to(&p.0, here));
         if outer_first {
+            leaves.ready(self, 0, &mut outer);
             self.cut_path_with(part, &outer.0, &outer.1, first, reach);
             first = false;
         }
@@ -503,17 +562,20 @@ impl<'a> Linker<'a> {
                 |p| walk::distance_to(&p.0, here),
             );
             boxes.swap_remove(k);
-            let (item, on_the_way) = items.swap_remove(k);
+            let mut item = items.swap_remove(k);
             let hole = hole_of.swap_remove(k);
-            self.cut_path_with(part, &item, &on_the_way, first, reach);
+            leaves.ready(self, ids.swap_remove(k), &mut item);
+            self.cut_path_with(part, &item.0, &item.1, first, reach);
             first = false;
             if let Some(j) = hole {
                 self.cut_enclosed_holes(n, j);
             }
         }
         if !outer_first {
+            leaves.ready(self, 0, &mut outer);
             self.cut_path_with(part, &outer.0, &outer.1, first, reach);
         }
+        leaves.left
     }
 
     /// The loop round islands of the parent of part `n` that `n`'s loop round islands `j`
@@ -706,7 +768,9 @@ impl<'a> Linker<'a> {
     /// Follows the walk `segments` of a loop, cutting each of `cleanups` on the way: where the
     /// walk comes nearest to the clean-up path's nearer end, out to that end (inside the tool's
     /// disc there, cut at that moment), along the path, and back to the walk straight from its
-    /// far end where nothing is in the way, else back along it. A clean-up path lies between a
+    /// far end where nothing is in the way, else back along it. A closed path among them is a
+    /// leaf's loop (see [`Linker::cut_part`]): out from the walk's point nearest to it, round
+    /// it from there and straight back. A clean-up path lies between a
     /// loop and the loops inside it, all of them cut when the walk passes: it is reached where
     /// the tool is, instead of by a link across the part (on the 8-island rectangle at 70 %
     /// stepover, 112 clean-up paths of 231 mm took 775 mm of links).
@@ -715,16 +779,28 @@ impl<'a> Linker<'a> {
         let eps = self.tol.eps;
         // Where each excursion leaves the walk: segment index, parameter, the path oriented to
         // start at its nearer end.
-        let mut stops: Vec<(usize, f64, Vec<Segment>)> = cleanups
+        let reverse = self.params.direction == Direction::Conventional;
+        let mut stops: Vec<(usize, f64, Vec<Segment>, bool)> = cleanups
             .iter()
             .map(|c| {
+                if c.closed {
+                    // A leaf's loop: from the walk's point nearest to it, round it from there.
+                    let (k, p) = nearest_pair(segments, &c.segments, r + eps, eps);
+                    let t = crate::geom::closest_param(&segments[k], p);
+                    return (k, t, walk::walk_from(c, p, reverse, eps), true);
+                }
                 let (start, end) = (c.segments[0].start(), c.segments[c.segments.len() - 1].end());
                 let (k, t, d_start) = nearest_on(segments, start);
                 let (k2, t2, d_end) = nearest_on(segments, end);
                 if d_end < d_start {
-                    (k2, t2, c.segments.iter().rev().map(Segment::reversed).collect())
+                    (
+                        k2,
+                        t2,
+                        c.segments.iter().rev().map(Segment::reversed).collect(),
+                        false,
+                    )
                 } else {
-                    (k, t, c.segments.clone())
+                    (k, t, c.segments.clone(), false)
                 }
             })
             .collect();
@@ -733,7 +809,7 @@ impl<'a> Linker<'a> {
         for (k, s) in segments.iter().enumerate() {
             let mut rest = *s;
             let mut done = 0.0;
-            while let Some((_, t, path)) = stops.next_if(|stop| stop.0 == k) {
+            while let Some((_, t, path, closed)) = stops.next_if(|stop| stop.0 == k) {
                 // `rest` runs over [done, 1] of the segment.
                 let local = if done < 1.0 {
                     ((t - done) / (1.0 - done)).clamp(0.0, 1.0)
@@ -750,7 +826,9 @@ impl<'a> Linker<'a> {
                 self.path.line(Point3::at(path[0].start(), self.z), Feed::Cut);
                 walk::follow(&mut self.path, &path, self.z);
                 let far = self.here();
-                if !(far.distance(p) <= r && self.stays_inside(far, p, r)) {
+                // A loop ends where it began, which the walk reached straight.
+                let straight_back = closed || (far.distance(p) <= r && self.stays_inside(far, p, r));
+                if !straight_back {
                     let back: Vec<Segment> = path.iter().rev().map(Segment::reversed).collect();
                     walk::follow(&mut self.path, &back, self.z);
                 }
@@ -957,36 +1035,71 @@ impl<'a> Linker<'a> {
     }
 
     /// A helix in the part `part` near the start of `segments`; when the part is too small,
-    /// in the part around it, and so on outwards (still inside the pocket: no gouge).
+    /// in the part around it, and so on outwards (still inside the pocket: no gouge). In each
+    /// part the helix is looked for about the paths' points within [`HELIX_NEAR_RADII`] tool
+    /// radii of that start, first the nearest of them, and about all the points only when
+    /// none of those gives a helix of the preferred radius: a plate's part has a loop round
+    /// every hole, it is entered again after each retract, and the helix is found within a
+    /// millimetre of the start.
     fn find_helix(&self, part: &Part, segments: &[Segment]) -> Option<Helix> {
         let r = self.plan().tool_radius;
         let q = segments[0].start();
+        let preferred = 0.5 * r;
         let mut part = Some(part);
         let mut first = true;
         while let Some(n) = part {
-            let mut samples = if first {
-                entry::samples(segments, 0.5 * r)
-            } else {
-                Vec::new()
-            };
-            for h in n.loops() {
-                samples.extend(entry::samples(&h.segments, 0.5 * r));
+            let paths =
+                || (n.loops().map(|h| &h.segments[..])).chain(n.cleanups.iter().map(|c| &c.segments[..]));
+            let mut best: Option<Helix> = None;
+            for within in HELIX_NEAR_RADII.map(|k| Some(k * r)).into_iter().chain([None]) {
+                // The points within `within` of `q`; all of them, a short path's at least once,
+                // without a bound.
+                let sample = |p: &[Segment]| match within {
+                    None => entry::samples(p, 0.5 * r),
+                    Some(d) => entry::samples_within(p, 0.5 * r, Some((q, d))),
+                };
+                let mut reaches_out = false;
+                let mut samples = Vec::new();
+                for p in first.then_some(segments).into_iter().chain(paths()) {
+                    if let Some(d) = within {
+                        let b = bbox_of(p);
+                        let corners = [
+                            b.min,
+                            b.max,
+                            Point::new(b.min.x, b.max.y),
+                            Point::new(b.max.x, b.min.y),
+                        ];
+                        reaches_out |= corners.iter().any(|c| c.distance(q) > d);
+                        if b.distance_sq(q) > d * d {
+                            continue;
+                        }
+                    }
+                    samples.extend(sample(p));
+                }
+                let found = entry::find_helix(
+                    self.pocket(),
+                    &n.outer,
+                    &samples,
+                    n.distance,
+                    r,
+                    preferred,
+                    0.1 * r,
+                    q,
+                );
+                if found.is_some_and(|h| h.radius >= preferred * (1.0 - 1e-5)) {
+                    return found;
+                }
+                // Else the largest found, the nearer search's on a tie.
+                if found.is_some_and(|h| best.is_none_or(|b| h.radius > b.radius)) {
+                    best = found;
+                }
+                // A wider search finds the same when every path lies within this one.
+                if !reaches_out {
+                    break;
+                }
             }
-            for c in &n.cleanups {
-                samples.extend(entry::samples(&c.segments, 0.5 * r));
-            }
-            let found = entry::find_helix(
-                self.pocket(),
-                &n.outer,
-                &samples,
-                n.distance,
-                r,
-                0.5 * r,
-                0.1 * r,
-                q,
-            );
-            if found.is_some() {
-                return found;
+            if best.is_some() {
+                return best;
             }
             first = false;
             part = n.parent.map(|i| &self.plan().parts[i]);
@@ -1038,23 +1151,134 @@ impl<'a> Linker<'a> {
 }
 
 /// A part being cut: the children still to cut before it, the small leaves to cut after it,
-/// and whether any child is cut (if none, its first path is an entry).
+/// the leaves to cut on the way round its loops, and whether any child is cut (if none, its
+/// first path is an entry).
 struct Visit {
     part: usize,
     before: Vec<usize>,
     after: Vec<usize>,
+    along: Vec<usize>,
     cut_any: bool,
 }
 
-impl Visit {
-    fn new(part: usize, plan: &ClearPlan) -> Visit {
-        Visit {
+/// The leaves a part cuts on the way round its paths (see [`Linker::cut_part`]): for each
+/// path (the outer loop 0, then the items), the leaves whose loop comes within a tool
+/// diameter of it, and for each leaf how many such paths are still to cut.
+struct LeavesBeside<'a> {
+    part: &'a Part,
+    /// The leaves, by index in `along`.
+    leaves: Vec<&'a Part>,
+    beside: Vec<Vec<usize>>,
+    pending: Vec<usize>,
+    /// Leaves that no path of the part passes near enough: cut after the part.
+    left: Vec<usize>,
+    ids: Vec<usize>,
+    /// The segments of all the paths in one index (a part's outer loop can be long, and it is
+    /// beside every leaf), with the path each is of.
+    segments: Vec<Segment>,
+    owner: Vec<usize>,
+    index: BoxIndex,
+}
+
+impl<'a> LeavesBeside<'a> {
+    fn new(
+        linker: &Linker<'a>,
+        part: &'a Part,
+        outer: &Path,
+        items: &[(Path, Vec<Path>)],
+        along: &[usize],
+    ) -> Self {
+        let plan = linker.plan();
+        let (reach, eps) = (2.0 * plan.tool_radius, linker.tol.eps);
+        let paths: Vec<&Path> = std::iter::once(outer).chain(items.iter().map(|i| &i.0)).collect();
+        let owner: Vec<usize> = (paths.iter().enumerate())
+            .flat_map(|(k, p)| p.segments.iter().map(move |_| k))
+            .collect();
+        let segments: Vec<Segment> = paths.iter().flat_map(|p| p.segments.iter().copied()).collect();
+        let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
+        let index = BoxIndex::new(&boxes);
+        let mut beside = vec![Vec::new(); paths.len()];
+        let mut pending = vec![0; along.len()];
+        for (l, &leaf) in along.iter().enumerate() {
+            let leaf_segments = &plan.parts[leaf].outer.segments;
+            for j in index.intersecting(&bbox_of(leaf_segments).inflated(reach)) {
+                let k = owner[j];
+                if beside[k].last() == Some(&l) {
+                    continue;
+                }
+                let near = |o: &Segment| crate::geom::segment_distance(&segments[j], o, eps).0 < reach;
+                if leaf_segments.iter().any(near) {
+                    beside[k].push(l);
+                    pending[l] += 1;
+                }
+            }
+        }
+        let left = (along.iter().zip(&pending))
+            .filter(|&(_, &p)| p == 0)
+            .map(|(&leaf, _)| leaf)
+            .collect();
+        LeavesBeside {
             part,
-            before: plan.parts[part].children.clone(),
-            after: Vec::new(),
-            cut_any: false,
+            leaves: along.iter().map(|&c| &plan.parts[c]).collect(),
+            beside,
+            pending,
+            left,
+            ids: along.to_vec(),
+            segments,
+            owner,
+            index,
         }
     }
+
+    /// The path `id` is about to be cut as `item` (its path and what is cut on the way round
+    /// it): the leaves beside no other path still to cut join what is cut on the way, when
+    /// they are near enough, else wait for the part to be cut.
+    fn ready(&mut self, linker: &Linker, id: usize, item: &mut (Path, Vec<Path>)) {
+        let (r, eps) = (linker.plan().tool_radius, linker.tol.eps);
+        for &l in &self.beside[id] {
+            self.pending[l] -= 1;
+            if self.pending[l] > 0 {
+                continue;
+            }
+            // The nearest points of the path and the leaf within r; where they come equally
+            // near more than once, the first along the path.
+            let leaf = &self.leaves[l].outer.segments;
+            let mut nearest: Option<(f64, usize, Point, Point)> = None;
+            for j in self.index.intersecting(&bbox_of(leaf).inflated(r)) {
+                if self.owner[j] != id {
+                    continue;
+                }
+                for o in leaf {
+                    let (d, p, q) = crate::geom::segment_distance(&self.segments[j], o, eps);
+                    if d < r && nearest.is_none_or(|n| (d, j) < (n.0, n.1)) {
+                        nearest = Some((d, j, p, q));
+                    }
+                }
+            }
+            match nearest {
+                Some((_, _, p, q)) if linker.stays_inside(p, q, self.part.distance) => {
+                    item.1.push(loop_path(leaf));
+                }
+                _ => self.left.push(self.ids[l]),
+            }
+        }
+    }
+}
+
+/// The segment of `walk` that comes nearest to `path`, and its point nearest, when they come
+/// within `within` (else the walk's start).
+fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (usize, Point) {
+    let bb = bbox_of(path).inflated(within);
+    let mut best = (0, walk[0].start(), f64::INFINITY);
+    for (k, s) in walk.iter().enumerate().filter(|(_, s)| s.bbox().intersects(&bb)) {
+        for o in path {
+            let (d, p, _) = crate::geom::segment_distance(s, o, eps);
+            if d < best.2 {
+                best = (k, p, d);
+            }
+        }
+    }
+    (best.0, best.1)
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps

@@ -242,6 +242,68 @@ fn the_loops_round_one_island_at_two_levels_are_cut_one_after_the_other() {
 }
 
 #[test]
+fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
+    // The same plate: at 7.8 mm from the walls what is left between four holes is a small
+    // diamond, a leaf its loop alone clears. It is cut once the loops at 5.4 mm round its
+    // four holes are, straight out from the last of them (2.4 mm) and back, instead of first,
+    // reached through full stock by a slot or an entry of its own.
+    let hole =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
+    let centres: Vec<Point> = (0..4)
+        .flat_map(|i| (0..3).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
+        .collect();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 80.0, 60.0),
+        islands: centres.iter().map(|c| hole(c.x, c.y)).collect(),
+    };
+    let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    let diamonds: Vec<Point> = (1..4)
+        .flat_map(|i| (1..3).map(move |j| Point::new(20.0 * i as f64, 20.0 * j as f64)))
+        .collect();
+    // By move: where it starts, and for an arc at depth, its centre and radius.
+    let mut from = l.toolpath.start;
+    let mut moves = Vec::new();
+    for m in &l.toolpath.moves {
+        moves.push((from, *m));
+        from = m.to();
+    }
+    let arc_round = |k: usize, c: Point, radius: f64| match moves[k] {
+        (at, Move::Arc { to, center, .. }) => {
+            at.z == -2.0 && to.z == -2.0 && center == c && (center.distance(at.xy()) - radius).abs() < 1e-6
+        }
+        _ => false,
+    };
+    for d in diamonds {
+        let four: Vec<Point> = centres.iter().copied().filter(|c| c.distance(d) < 15.0).collect();
+        assert_eq!(four.len(), 4);
+        let first = (0..moves.len())
+            .find(|&k| four.iter().any(|&c| arc_round(k, c, 11.8)) && moves[k].0.xy().distance(d) < 4.0)
+            .unwrap_or_else(|| panic!("the diamond at {d:?} is cut"));
+        let (at, step) = moves[first - 1];
+        let Move::Line { to, .. } = step else {
+            panic!("the diamond at {d:?} is reached by {step:?}");
+        };
+        assert!(to.z == -2.0 && at.z == -2.0, "reached at depth");
+        assert!((at.xy().distance(to.xy()) - 2.4).abs() < 1e-6, "a step of 2.4 mm");
+        let host = (four.iter().copied())
+            .find(|c| (c.distance(at.xy()) - 9.4).abs() < 1e-6)
+            .unwrap_or_else(|| panic!("the diamond at {d:?} is reached from a loop round one of its holes"));
+        // The loop it is reached from goes on after it; the other three are done.
+        for &c in &four {
+            let ring: Vec<usize> = (0..moves.len()).filter(|&k| arc_round(k, c, 9.4)).collect();
+            assert!(
+                ring[0] < first,
+                "the loop round {c:?} begun before the diamond at {d:?}"
+            );
+            assert!(
+                c == host || ring[ring.len() - 1] < first,
+                "the loop round {c:?} done before the diamond at {d:?}"
+            );
+        }
+    }
+}
+
+#[test]
 fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
     // Two islands 60 mm apart: their loops at the walls' level are 46 mm apart, 2.8 s at the
     // cutting feed against about 1.3 s up, across at rapid, down and a retract's half second.
