@@ -36,7 +36,28 @@ fn arc_closest_param(a: &Arc, p: Point) -> f64 {
 /// assert_eq!(closest_point(&s, Point::new(-3.0, 5.0)), Point::new(0.0, 0.0));
 /// ```
 pub fn closest_point(seg: &Segment, p: Point) -> Point {
-    seg.point_at(closest_param(seg, p))
+    match seg {
+        Segment::Line(l) => l.point_at(l.param_of(p).clamp(0.0, 1.0)),
+        Segment::Arc(a) => arc_closest_point(a, p),
+    }
+}
+
+/// The point of `a` nearest to `p`: sign tests against its stored ends and a scaling, where
+/// going through the parameter takes an angle and its sine and cosine.
+fn arc_closest_point(a: &Arc, p: Point) -> Point {
+    let v = p - a.center();
+    let length = v.length();
+    if length == 0.0 {
+        return a.start(); // every point of the arc is equally near the centre
+    }
+    let (start, end) = (a.start(), a.end());
+    if in_sweep(a.sweep(), start - a.center(), end - a.center(), v) {
+        a.center() + v * (a.radius() / length)
+    } else if start.distance_sq(p) <= end.distance_sq(p) {
+        start
+    } else {
+        end
+    }
 }
 
 /// Distance from the segment `seg` to the point `p`.
@@ -123,7 +144,7 @@ pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Poin
     // Interior-to-interior minima lie on a normal through an arc's centre.
     for (x, y, flip) in [(a, b, false), (b, a, true)] {
         if let Segment::Arc(arc) = x {
-            for q in interior_candidates(arc, y) {
+            for q in interior_candidates(arc, y).into_iter().flatten() {
                 let on_y = closest_point(y, q);
                 if flip {
                     consider(on_y, q);
@@ -136,8 +157,8 @@ pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Poin
     best
 }
 
-/// Points of `arc` where an interior minimum of the distance to `other` can be.
-fn interior_candidates(arc: &Arc, other: &Segment) -> Vec<Point> {
+/// Points of `arc` where an interior minimum of the distance to `other` can be (at most two).
+fn interior_candidates(arc: &Arc, other: &Segment) -> [Option<Point>; 2] {
     let target = match other {
         // The foot of the centre on the line: the arc point towards it is nearest to the line.
         Segment::Line(l) => l.point_at(l.param_of(arc.center()).clamp(0.0, 1.0)),
@@ -145,13 +166,12 @@ fn interior_candidates(arc: &Arc, other: &Segment) -> Vec<Point> {
     };
     let v = target - arc.center();
     let Some(u) = v.normalized() else {
-        return Vec::new();
+        return [None, None];
     };
-    [u, -u]
-        .into_iter()
-        .filter(|d| arc.contains_angle(d.angle(), 0.0))
-        .map(|d| arc.center() + d * arc.radius())
-        .collect()
+    [u, -u].map(|d| {
+        arc.contains_angle(d.angle(), 0.0)
+            .then(|| arc.center() + d * arc.radius())
+    })
 }
 
 #[cfg(test)]

@@ -18,13 +18,13 @@ pub struct Helix {
 
 /// Looks for a helix inside the part that is cut first: its circle at least `tool_radius` from
 /// every wall (no gouge), its centre at least `part_distance` from them and inside `outer` (so
-/// it lies in that part), as large as `preferred` if possible and never smaller than
+/// it lies in that part; `outer` comes with its box), as large as `preferred` if possible and never smaller than
 /// `smallest`, then nearest to `target`. `samples` are points of the part's paths with their
 /// normals into the part.
 #[allow(clippy::too_many_arguments)]
 pub fn find_helix(
     pocket: &PreparedPocket,
-    outer: &crate::geom::Contour,
+    (outer, b): (&crate::geom::Contour, crate::geom::Aabb),
     samples: &[(Point, Vector)],
     part_distance: f64,
     tool_radius: f64,
@@ -34,7 +34,6 @@ pub fn find_helix(
 ) -> Option<Helix> {
     // Pushed along the normal by these amounts, samples reach the middle of the part, small
     // or large; the middle of its box is a candidate too.
-    let b = outer.bbox();
     let size = b.width().min(b.height());
     let pushes = [0.02 * size, 0.1 * size, 0.25 * size, 0.4 * size]
         .into_iter()

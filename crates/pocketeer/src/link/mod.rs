@@ -33,6 +33,7 @@ use crate::geom::PreparedPocket;
 use crate::geom::{bbox_of, Aabb, BoxIndex, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
+use std::cell::OnceCell;
 
 /// Longest move at depth through uncut stock from one branch to the next, in tool radii: a
 /// deliberate slot, no wider than the tool, instead of a retract and a new entry.
@@ -240,6 +241,7 @@ pub fn link_with(
         down: false,
         last: (Vec::new(), false),
         boxes: Vec::new(),
+        path_boxes: Vec::new(),
         cut_early: std::collections::HashSet::new(),
         enclosed: std::collections::HashMap::new(),
     };
@@ -261,6 +263,7 @@ pub fn link_with(
         linker.pocket = Some(pocket);
         if !linker.plan.is_some_and(|p| std::ptr::eq(p, plan)) {
             linker.boxes = plan.parts.iter().map(|p| p.outer.bbox()).collect();
+            linker.path_boxes = plan.parts.iter().map(|_| OnceCell::new()).collect();
         }
         linker.plan = Some(plan);
         let mut z_top = 0.0;
@@ -298,6 +301,9 @@ struct Linker<'a> {
     /// The boxes of the plan's parts (their outer loops), by part: asked for at every
     /// choice of the next part and landing, and each a pass over its loop.
     boxes: Vec<Aabb>,
+    /// The boxes of each part's paths (its loops, then its clean-up paths), by part, made
+    /// when a helix is first looked for in it: a plate's part is entered many times.
+    path_boxes: Vec<OnceCell<Vec<Aabb>>>,
     /// Loops round islands (part, index among its holes) cut in this pass before their part,
     /// each right after the loop round the same islands one level in (see
     /// [`Linker::cut_enclosed_holes`]).
@@ -1045,40 +1051,46 @@ impl<'a> Linker<'a> {
         let r = self.plan().tool_radius;
         let q = segments[0].start();
         let preferred = 0.5 * r;
-        let mut part = Some(part);
-        let mut first = true;
-        while let Some(n) = part {
-            let paths =
-                || (n.loops().map(|h| &h.segments[..])).chain(n.cleanups.iter().map(|c| &c.segments[..]));
+        let parts = &self.plan().parts;
+        let mut at = parts.iter().position(|p| std::ptr::eq(p, part));
+        // The walk to start is looked about in the part it is of only.
+        let mut walk = Some((segments, bbox_of(segments)));
+        while let Some(i) = at {
+            let n = &parts[i];
+            let paths: Vec<&[Segment]> = (n.loops().map(|h| &h.segments[..]))
+                .chain(n.cleanups.iter().map(|c| &c.segments[..]))
+                .collect();
+            let boxes = self.path_boxes[i].get_or_init(|| paths.iter().map(|p| bbox_of(p)).collect());
+            let all: Vec<(&[Segment], Aabb)> = walk
+                .into_iter()
+                .chain(paths.iter().copied().zip(boxes.iter().copied()))
+                .collect();
             let mut best: Option<Helix> = None;
             for within in HELIX_NEAR_RADII.map(|k| Some(k * r)).into_iter().chain([None]) {
-                // The points within `within` of `q`; all of them, a short path's at least once,
-                // without a bound.
-                let sample = |p: &[Segment]| match within {
-                    None => entry::samples(p, 0.5 * r),
-                    Some(d) => entry::samples_within(p, 0.5 * r, Some((q, d))),
-                };
                 let mut reaches_out = false;
                 let mut samples = Vec::new();
-                for p in first.then_some(segments).into_iter().chain(paths()) {
-                    if let Some(d) = within {
-                        let b = bbox_of(p);
-                        let corners = [
-                            b.min,
-                            b.max,
-                            Point::new(b.min.x, b.max.y),
-                            Point::new(b.max.x, b.min.y),
-                        ];
-                        reaches_out |= corners.iter().any(|c| c.distance(q) > d);
-                        if b.distance_sq(q) > d * d {
-                            continue;
+                for &(p, b) in &all {
+                    match within {
+                        // All the points; a short path's at least once.
+                        None => samples.extend(entry::samples(p, 0.5 * r)),
+                        // The points within `d` of `q`.
+                        Some(d) => {
+                            let corners = [
+                                b.min,
+                                b.max,
+                                Point::new(b.min.x, b.max.y),
+                                Point::new(b.max.x, b.min.y),
+                            ];
+                            reaches_out |= corners.iter().any(|c| c.distance(q) > d);
+                            if b.distance_sq(q) <= d * d {
+                                samples.extend(entry::samples_within(p, 0.5 * r, Some((q, d))));
+                            }
                         }
                     }
-                    samples.extend(sample(p));
                 }
                 let found = entry::find_helix(
                     self.pocket(),
-                    &n.outer,
+                    (&n.outer, self.boxes[i]),
                     &samples,
                     n.distance,
                     r,
@@ -1101,8 +1113,8 @@ impl<'a> Linker<'a> {
             if best.is_some() {
                 return best;
             }
-            first = false;
-            part = n.parent.map(|i| &self.plan().parts[i]);
+            walk = None;
+            at = n.parent;
         }
         None
     }
