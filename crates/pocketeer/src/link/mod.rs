@@ -745,13 +745,19 @@ impl<'a> Linker<'a> {
             self.retract();
             self.enter(part, &segments);
         } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, reach.distance)) {
-            // Round what is in the way, inside the part, when faster than going over the top.
-            let hop = self.hop_seconds(here.distance(q), self.z);
-            match self.detour_within(reach.distance, q, hop, f64::INFINITY) {
+            // Round what is in the way, inside the part, when faster than going over the top:
+            // down onto a floor cut near `q` and across, or, where there is none, a new entry.
+            let t = &self.params.time;
+            let landing = self.landing(reach, q);
+            let over = match landing {
+                Some(p) => self.hop_seconds(here.distance(p), self.z) + t.feed_seconds(p.distance(q), t.feed),
+                None => self.hop_seconds(here.distance(q), self.z_top) + self.entry_seconds(),
+            };
+            match self.detour_within(reach.distance, q, over, f64::INFINITY) {
                 Some(way) => self.feed_through(&way),
                 None => {
                     self.retract();
-                    self.come_down_near(part, reach, &segments);
+                    self.come_down_at(landing, part, &segments);
                 }
             }
         } else if let Some(p) = self.hop_rather_than(q, reach) {
@@ -869,19 +875,12 @@ impl<'a> Linker<'a> {
     /// the plan clears anyway, so nothing is cut that it would not cut), taking less time than
     /// going up, across, down and entering. The corners of the way, the last being `q`.
     fn slot_link(&self, part: &Part, q: Point) -> Option<Vec<Point>> {
-        let (plan, p) = (self.plan(), self.params);
+        let plan = self.plan();
         let mut root = part.parent?;
         while let Some(i) = plan.parts[root].parent {
             root = i;
         }
-        let t = &p.time;
-        let drop = self.z_top - self.z;
-        let entry_length = drop / p.ramp_angle.sin();
-        let entry = t.feed_seconds(
-            entry_length,
-            Feed::Ramp.rate(t.feed, t.plunge_feed, entry_length, drop),
-        );
-        let seconds = self.hop_seconds(self.here().distance(q), self.z_top) + entry;
+        let seconds = self.hop_seconds(self.here().distance(q), self.z_top) + self.entry_seconds();
         let longest = MAX_SLOT_LINK_RADII * plan.tool_radius;
         self.detour_within(plan.parts[root].distance, q, seconds, longest)
     }
@@ -917,6 +916,15 @@ impl<'a> Linker<'a> {
         for &c in corners {
             self.path.line(Point3::at(c, self.z), Feed::Cut);
         }
+    }
+
+    /// Seconds of a new entry from the floor of the pass before down to this pass's depth: a
+    /// ramp or helix at the ramp angle, at the rate [`Feed::Ramp`] gives it.
+    fn entry_seconds(&self) -> f64 {
+        let (p, t) = (self.params, &self.params.time);
+        let drop = self.z_top - self.z;
+        let length = drop / p.ramp_angle.sin();
+        t.feed_seconds(length, Feed::Ramp.rate(t.feed, t.plunge_feed, length, drop))
     }
 
     /// Seconds to retract from the pass depth, go `across` at the safe height and come down
@@ -984,12 +992,11 @@ impl<'a> Linker<'a> {
         (hop < straight).then_some(p)
     }
 
-    /// Back down after a retract to start `segments` of `part`: straight down onto the nearest
-    /// loop of the parts `reach` says are cut or onto the walk just cut, then across; a new
-    /// entry when no such way stays inside.
-    fn come_down_near(&mut self, part: &Part, reach: Reach, segments: &[Segment]) {
+    /// Back down after a retract to start `segments` of `part`: straight down onto `landing`
+    /// (see [`Linker::landing`]), then across; a new entry when there is none.
+    fn come_down_at(&mut self, landing: Option<Point>, part: &Part, segments: &[Segment]) {
         let q = segments[0].start();
-        match self.landing(reach, q) {
+        match landing {
             Some(p) => {
                 // That loop was cut at this pass's depth: down onto its floor.
                 self.descend_to(p, self.z);

@@ -484,6 +484,24 @@ fn a_branch_behind_an_island_is_reached_by_a_slot_round_it() {
 }
 
 #[test]
+fn a_loop_behind_an_island_with_no_floor_cut_near_it_is_reached_round_the_island() {
+    // A plate of 8 x 6 holes: going from the loops round one hole to those round the next,
+    // the straight way often crosses a hole, and near the next hole nothing is cut yet, so
+    // going over the top means a new entry (a helix of some 3.4 s here) where the way round
+    // the hole, along the loop just cut, takes under two seconds.
+    let hole =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 160.0, 120.0),
+        islands: (0..8)
+            .flat_map(|i| (0..6).map(move |j| hole(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
+            .collect(),
+    };
+    let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    assert_eq!(entries(&l), 1);
+}
+
+#[test]
 fn small_leaves_in_the_corners_of_a_channel_are_cut_without_entries_of_their_own() {
     // A 10 mm channel round two islands: the levels beyond the first leave a small leaf in
     // each corner and at each junction, far apart. Entering each would take six helices; cut
