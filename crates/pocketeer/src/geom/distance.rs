@@ -157,6 +157,31 @@ pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Poin
     best
 }
 
+/// True when the segments `a` and `b` come nearer to each other than `r`: the same answer as
+/// [`segment_distance`] `< r`, found mostly from the distances of `b`'s ends to `a`, which are
+/// cheap. An end nearer than `r` answers yes; both ends farther than `r` by half of `b`'s
+/// length answer no, every point of `b` being within that of one of its ends; only between
+/// the two is the exact distance measured (a short move tested against the walls, as ways
+/// round islands are searched, is decided by its ends almost always).
+///
+/// ```
+/// use pocketeer::geom::{segments_nearer_than, Arc, Line, Point, Segment};
+/// let circle = Segment::Arc(Arc::circle(Point::new(0.0, 0.0), 1.0));
+/// let line = Segment::Line(Line::new(Point::new(-5.0, 3.0), Point::new(5.0, 3.0)));
+/// assert!(segments_nearer_than(&circle, &line, 2.1, 1e-9));
+/// assert!(!segments_nearer_than(&circle, &line, 1.9, 1e-9));
+/// ```
+pub fn segments_nearer_than(a: &Segment, b: &Segment, r: f64, eps: f64) -> bool {
+    let ends = distance_from_segment(a, b.start()).min(distance_from_segment(a, b.end()));
+    if ends < r {
+        return true;
+    }
+    if ends >= r + 0.5 * b.length() {
+        return false;
+    }
+    segment_distance(a, b, eps).0 < r
+}
+
 /// Points of `arc` where an interior minimum of the distance to `other` can be (at most two).
 fn interior_candidates(arc: &Arc, other: &Segment) -> [Option<Point>; 2] {
     let target = match other {
@@ -177,6 +202,37 @@ fn interior_candidates(arc: &Arc, other: &Segment) -> [Option<Point>; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shortcut through the ends gives the exact distance's answer on lines and arcs of
+    /// every kind against each other, at distances either side of each pair's.
+    #[test]
+    fn nearer_than_by_the_ends_agrees_with_the_exact_distance() {
+        let mut segments = Vec::new();
+        for k in 0..6 {
+            let t = k as f64 * 0.9;
+            let p = Point::new(t.cos() * 3.0, t.sin() * 2.0);
+            segments.push(Segment::Line(Line::new(
+                p,
+                p + Vector::from_angle(t * 1.7) * (0.3 + k as f64),
+            )));
+            segments.push(Segment::Arc(Arc::new(
+                p,
+                0.5 + 0.4 * k as f64,
+                t,
+                0.4 + 1.1 * k as f64 - 2.5,
+            )));
+        }
+        for a in &segments {
+            for b in &segments {
+                let d = segment_distance(a, b, 1e-9).0;
+                for r in [0.5 * d, d - 1e-6, d + 1e-6, d + 0.3, 2.0 * d + 1.0] {
+                    if r > 0.0 {
+                        assert_eq!(segments_nearer_than(a, b, r, 1e-9), d < r, "{a:?} {b:?} r {r}");
+                    }
+                }
+            }
+        }
+    }
 
     /// The sign tests agree with the angle test all round arcs of every kind of sweep, both
     /// ways.

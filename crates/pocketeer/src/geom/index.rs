@@ -1,7 +1,9 @@
 //! Spatial indexes over bounding boxes and segments (on a [`PackedTree`]), for finding the
 //! pairs of elements that may touch, and distances, without testing every pair.
 
-use super::{distance_from_segment, segment_distance, Aabb, PackedTree, Point, Segment};
+use super::{
+    distance_from_segment, segment_distance, segments_nearer_than, Aabb, PackedTree, Point, Segment,
+};
 
 /// Boxes indexed by their position in the slice they were built from.
 ///
@@ -234,6 +236,14 @@ impl SegmentIndex {
         found.is_some()
     }
 
+    /// The segments whose boxes meet `b`.
+    pub fn segments_meeting(&self, b: &Aabb) -> impl Iterator<Item = &Segment> + '_ {
+        let b = *b;
+        self.tree
+            .search(move |x| x.intersects(&b))
+            .map(|i| &self.segments[i])
+    }
+
     /// True when some segment comes nearer to the segment `s` than `r` (`eps`: the geometric
     /// epsilon used to detect touching).
     ///
@@ -252,7 +262,7 @@ impl SegmentIndex {
         let query = s.bbox().inflated(r);
         self.tree
             .search(|b| b.intersects(&query))
-            .any(|i| segment_distance(&self.segments[i], s, eps).0 < r)
+            .any(|i| segments_nearer_than(&self.segments[i], s, r, eps))
     }
 
     /// The nearest segment to the segment `s` if one is nearer than `limit`: the distance and

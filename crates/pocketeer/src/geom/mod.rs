@@ -21,7 +21,9 @@ pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
 pub use cluster::{cluster_points, cluster_points_by};
 pub use contour::{bbox_of, signed_area, winding_number, Contour, WindingIndex};
-pub use distance::{closest_param, closest_point, distance_from_segment, segment_distance};
+pub use distance::{
+    closest_param, closest_point, distance_from_segment, segment_distance, segments_nearer_than,
+};
 pub use index::{box_pairs, for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;

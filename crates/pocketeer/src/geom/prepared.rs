@@ -91,6 +91,12 @@ impl PreparedPocket {
         self.walls.distance(p)
     }
 
+    /// The walls' and islands' segments whose boxes meet `b`: a search confined to `b` tests
+    /// its moves against these alone.
+    pub fn walls_meeting(&self, b: &Aabb) -> Vec<Segment> {
+        self.walls.segments_meeting(b).copied().collect()
+    }
+
     /// True when the segment `s` comes nearer than `r` to a wall or an island: a tool centre
     /// moving along `s` stays at least `r` from them exactly when this is false.
     pub fn segment_nearer_than(&self, s: &Segment, r: f64, tol: &Tolerance) -> bool {

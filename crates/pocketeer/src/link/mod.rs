@@ -43,6 +43,10 @@ pub const MAX_SLOT_LINK_RADII: f64 = 8.0;
 /// radii, before all of them are (see [`Linker::find_helix`]).
 const HELIX_NEAR_RADII: [f64; 2] = [2.0, 10.0];
 
+/// Most walls a way round what is in the way is tested against one by one (see
+/// [`Linker::detour_within`]); beyond, through the pocket's index.
+const MAX_LOCAL_WALLS: usize = 256;
+
 /// How many of the nearest branches not cut yet are tried for a slot from where the tool is.
 const SLOT_CANDIDATES: usize = 4;
 
@@ -896,7 +900,39 @@ impl<'a> Linker<'a> {
             longest
         };
         let step = DETOUR_STEP_RADII * self.plan().tool_radius;
-        let way = detour(self.here(), q, step, longest, |a, b| self.stays_inside(a, b, d))?;
+        let here = self.here();
+        // Every move the search tests lies within `longest / 2` of the middle of the way (the
+        // search keeps to the ellipse of ways at most `longest` long): the walls that can come
+        // within `d` of them are found once, and each move is tested against those alone, not
+        // through the whole pocket's index (a way round the islands of a plate tests thousands);
+        // when there are many of them, through the index after all.
+        let local = longest.is_finite().then(|| {
+            let (m, half) = (here.midpoint(q), 0.5 * longest + d);
+            let area = Aabb::from_points(
+                Point::new(m.x - half, m.y - half),
+                Point::new(m.x + half, m.y + half),
+            );
+            let walls: Vec<(Segment, Aabb)> = (self.pocket().walls_meeting(&area).into_iter())
+                .map(|s| (s, s.bbox()))
+                .collect();
+            walls
+        });
+        let local = local.filter(|walls| walls.len() <= MAX_LOCAL_WALLS);
+        let (slack, eps) = (clearance_slack(d, self.tol), self.tol.eps);
+        let free = |a: Point, b: Point| match &local {
+            // As `stays_inside`.
+            Some(walls) => {
+                let (s, r) = (Segment::Line(crate::geom::Line::new(a, b)), d - slack);
+                let sb = s.bbox();
+                a.distance(b) <= slack
+                    || r <= 0.0
+                    || !(walls.iter()).any(|(w, wb)| {
+                        wb.distance_to_box(&sb) < r && crate::geom::segments_nearer_than(w, &s, r, eps)
+                    })
+            }
+            None => self.stays_inside(a, b, d),
+        };
+        let way = detour(here, q, step, longest, free)?;
         (self.params.time.feed_seconds(self.way_length(&way), feed) < seconds).then_some(way)
     }
 
