@@ -120,7 +120,14 @@ pub(crate) fn in_turn(from: Vector, to: Vector, v: Vector, more_than_half: bool)
 /// assert!(on_line.distance(Point::new(0.0, 3.0)) < 1e-12);
 /// ```
 pub fn segment_distance(a: &Segment, b: &Segment, eps: f64) -> (f64, Point, Point) {
-    if let Some(i) = intersect(a, b, eps).iter().next() {
+    // Segments whose boxes stay apart by more than the tolerance cannot meet: the intersection
+    // test, most of the cost between two arcs or a line and an arc, is left out (the loops of
+    // a part and the ones inside it, measured against each other, are a stepover apart).
+    let may_meet = || a.bbox().inflated(4.0 * eps).intersects(&b.bbox());
+    if let Some(i) = may_meet()
+        .then(|| intersect(a, b, eps))
+        .and_then(|x| x.iter().next())
+    {
         let p = match i {
             intersect::Intersection::Point { point, .. } => point,
             intersect::Intersection::Overlap { a: span, .. } => a.point_at(span.0),
@@ -193,10 +200,9 @@ fn interior_candidates(arc: &Arc, other: &Segment) -> [Option<Point>; 2] {
     let Some(u) = v.normalized() else {
         return [None, None];
     };
-    [u, -u].map(|d| {
-        arc.contains_angle(d.angle(), 0.0)
-            .then(|| arc.center() + d * arc.radius())
-    })
+    // Sign tests against the arc's stored ends, not an angle (see `in_sweep`).
+    let (s, e) = (arc.start() - arc.center(), arc.end() - arc.center());
+    [u, -u].map(|d| in_sweep(arc.sweep(), s, e, d).then(|| arc.center() + d * arc.radius()))
 }
 
 #[cfg(test)]

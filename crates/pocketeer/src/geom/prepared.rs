@@ -93,8 +93,8 @@ impl PreparedPocket {
 
     /// The walls' and islands' segments whose boxes meet `b`: a search confined to `b` tests
     /// its moves against these alone.
-    pub fn walls_meeting(&self, b: &Aabb) -> Vec<Segment> {
-        self.walls.segments_meeting(b).copied().collect()
+    pub fn walls_meeting(&self, b: &Aabb) -> impl Iterator<Item = &Segment> + '_ {
+        self.walls.segments_meeting(b)
     }
 
     /// True when the segment `s` comes nearer than `r` to a wall or an island: a tool centre

@@ -912,8 +912,10 @@ impl<'a> Linker<'a> {
                 Point::new(m.x - half, m.y - half),
                 Point::new(m.x + half, m.y + half),
             );
-            let walls: Vec<(Segment, Aabb)> = (self.pocket().walls_meeting(&area).into_iter())
-                .map(|s| (s, s.bbox()))
+            // One more than the most kept, to tell when there are too many without listing all.
+            let walls: Vec<(Segment, Aabb)> = (self.pocket().walls_meeting(&area))
+                .take(MAX_LOCAL_WALLS + 1)
+                .map(|s| (*s, s.bbox()))
                 .collect();
             walls
         });
@@ -1256,13 +1258,15 @@ impl<'a> LeavesBeside<'a> {
         let mut pending = vec![0; along.len()];
         for (l, &leaf) in along.iter().enumerate() {
             let leaf_segments = &plan.parts[leaf].outer.segments;
+            let leaf_index = PathIndex::new(leaf_segments);
             for j in index.intersecting(&bbox_of(leaf_segments).inflated(reach)) {
                 let k = owner[j];
                 if beside[k].last() == Some(&l) {
                     continue;
                 }
-                let near = |o: &Segment| crate::geom::segment_distance(&segments[j], o, eps).0 < reach;
-                if leaf_segments.iter().any(near) {
+                let near =
+                    |o: usize| crate::geom::segment_distance(&segments[j], &leaf_segments[o], eps).0 < reach;
+                if leaf_index.within(&boxes[j], reach).into_iter().any(near) {
                     beside[k].push(l);
                     pending[l] += 1;
                 }
@@ -1299,11 +1303,16 @@ impl<'a> LeavesBeside<'a> {
             // near more than once, the first along the path.
             let leaf = &self.leaves[l].outer.segments;
             let mut nearest: Option<(f64, usize, Point, Point)> = None;
-            for j in self.index.intersecting(&bbox_of(leaf).inflated(r)) {
-                if self.owner[j] != id {
-                    continue;
-                }
-                for o in leaf {
+            // By the leaf's segments, each against the path's segments whose boxes come within
+            // r (and within the nearest so far) of its own: the leaf and the path can both be
+            // thousands of segments long.
+            for o in leaf {
+                let within = nearest.map_or(r, |n| n.0.min(r));
+                let mut near: Vec<usize> = (self.index.intersecting(&o.bbox().inflated(within)))
+                    .filter(|&j| self.owner[j] == id)
+                    .collect();
+                near.sort_unstable();
+                for j in near {
                     let (d, p, q) = crate::geom::segment_distance(&self.segments[j], o, eps);
                     if d < r && nearest.is_none_or(|n| (d, j) < (n.0, n.1)) {
                         nearest = Some((d, j, p, q));
@@ -1324,16 +1333,46 @@ impl<'a> LeavesBeside<'a> {
 /// within `within` (else the walk's start).
 fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (usize, Point) {
     let bb = bbox_of(path).inflated(within);
+    let near = PathIndex::new(path);
     let mut best = (0, walk[0].start(), f64::INFINITY);
     for (k, s) in walk.iter().enumerate().filter(|(_, s)| s.bbox().intersects(&bb)) {
-        for o in path {
-            let (d, p, _) = crate::geom::segment_distance(s, o, eps);
+        // Only the segments of `path` whose boxes come within the best distance so far can
+        // come nearer than it (a loop of thousands of segments against another).
+        for o in near.within(&s.bbox(), best.2) {
+            let (d, p, _) = crate::geom::segment_distance(s, &path[o], eps);
             if d < best.2 {
                 best = (k, p, d);
             }
         }
     }
     (best.0, best.1)
+}
+
+/// The segments of a path in an index, to find those near a box in the path's order.
+struct PathIndex {
+    index: BoxIndex,
+    count: usize,
+}
+
+impl PathIndex {
+    fn new(path: &[Segment]) -> PathIndex {
+        let boxes: Vec<Aabb> = path.iter().map(Segment::bbox).collect();
+        PathIndex {
+            index: BoxIndex::new(&boxes),
+            count: path.len(),
+        }
+    }
+
+    /// The indices, ascending, of the segments whose boxes come within `d` of `b` (every one
+    /// when `d` is infinite); a superset of those within `d` of anything in `b`.
+    fn within(&self, b: &Aabb, d: f64) -> Vec<usize> {
+        if !d.is_finite() {
+            return (0..self.count).collect();
+        }
+        let mut found: Vec<usize> = self.index.intersecting(&b.inflated(d)).collect();
+        found.sort_unstable();
+        found
+    }
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
