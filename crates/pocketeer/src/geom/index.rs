@@ -36,6 +36,18 @@ impl BoxIndex {
         self.tree.search(move |x| x.intersects(&b))
     }
 
+    /// The item whose `exact` distance is least and below `limit`, searched best first by
+    /// `bound`, a lower bound of `exact` for the items in a box (see
+    /// [`PackedTree::nearest_below`]): the item's index and its distance.
+    pub fn nearest_below(
+        &self,
+        bound: impl Fn(&Aabb) -> f64,
+        exact: impl Fn(usize) -> f64,
+        limit: f64,
+    ) -> Option<(usize, f64)> {
+        self.tree.nearest_below(bound, exact, limit)
+    }
+
     /// Indices of the boxes that contain `p`.
     pub fn at_point(&self, p: Point) -> impl Iterator<Item = usize> + '_ {
         self.tree.search(move |x| x.contains(p))

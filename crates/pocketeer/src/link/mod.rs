@@ -1303,20 +1303,22 @@ impl<'a> LeavesBeside<'a> {
             // near more than once, the first along the path.
             let leaf = &self.leaves[l].outer.segments;
             let mut nearest: Option<(f64, usize, Point, Point)> = None;
-            // By the leaf's segments, each against the path's segments whose boxes come within
-            // r (and within the nearest so far) of its own: the leaf and the path can both be
-            // thousands of segments long.
+            // By the leaf's segments, the nearest segment of the path to each, searched best
+            // first below the nearest so far: the leaf and the path can both be thousands of
+            // segments long, and short ones (a profile of 100 000 lines) hundreds to a radius.
             for o in leaf {
-                let within = nearest.map_or(r, |n| n.0.min(r));
-                let mut near: Vec<usize> = (self.index.intersecting(&o.bbox().inflated(within)))
-                    .filter(|&j| self.owner[j] == id)
-                    .collect();
-                near.sort_unstable();
-                for j in near {
-                    let (d, p, q) = crate::geom::segment_distance(&self.segments[j], o, eps);
-                    if d < r && nearest.is_none_or(|n| (d, j) < (n.0, n.1)) {
-                        nearest = Some((d, j, p, q));
+                let ob = o.bbox();
+                let limit = nearest.map_or(r, |n| n.0.min(r));
+                let exact = |j: usize| {
+                    if self.owner[j] == id {
+                        crate::geom::segment_distance(&self.segments[j], o, eps).0
+                    } else {
+                        f64::INFINITY
                     }
+                };
+                if let Some((j, _)) = self.index.nearest_below(|b| b.distance_to_box(&ob), exact, limit) {
+                    let (d, p, q) = crate::geom::segment_distance(&self.segments[j], o, eps);
+                    nearest = Some((d, j, p, q));
                 }
             }
             match nearest {
@@ -1336,13 +1338,16 @@ fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (u
     let near = PathIndex::new(path);
     let mut best = (0, walk[0].start(), f64::INFINITY);
     for (k, s) in walk.iter().enumerate().filter(|(_, s)| s.bbox().intersects(&bb)) {
-        // Only the segments of `path` whose boxes come within the best distance so far can
-        // come nearer than it (a loop of thousands of segments against another).
-        for o in near.within(&s.bbox(), best.2) {
+        // The segment of `path` nearest to this one, searched best first below the best so far
+        // (a loop of thousands of segments against another).
+        let sb = s.bbox();
+        let exact = |o: usize| crate::geom::segment_distance(s, &path[o], eps).0;
+        if let Some((o, _)) = near
+            .index
+            .nearest_below(|b| b.distance_to_box(&sb), exact, best.2)
+        {
             let (d, p, _) = crate::geom::segment_distance(s, &path[o], eps);
-            if d < best.2 {
-                best = (k, p, d);
-            }
+            best = (k, p, d);
         }
     }
     (best.0, best.1)
