@@ -1258,15 +1258,15 @@ impl<'a> LeavesBeside<'a> {
         let mut pending = vec![0; along.len()];
         for (l, &leaf) in along.iter().enumerate() {
             let leaf_segments = &plan.parts[leaf].outer.segments;
-            let leaf_index = PathIndex::new(leaf_segments);
+            let leaf_index = path_index(leaf_segments);
             for j in index.intersecting(&bbox_of(leaf_segments).inflated(reach)) {
                 let k = owner[j];
                 if beside[k].last() == Some(&l) {
                     continue;
                 }
-                let near =
-                    |o: usize| crate::geom::segment_distance(&segments[j], &leaf_segments[o], eps).0 < reach;
-                if leaf_index.within(&boxes[j], reach).into_iter().any(near) {
+                let exact = |o: usize| crate::geom::segment_distance(&segments[j], &leaf_segments[o], eps).0;
+                let bound = |b: &Aabb| b.distance_to_box(&boxes[j]);
+                if leaf_index.nearest_below(bound, exact, reach).is_some() {
                     beside[k].push(l);
                     pending[l] += 1;
                 }
@@ -1335,17 +1335,14 @@ impl<'a> LeavesBeside<'a> {
 /// within `within` (else the walk's start).
 fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (usize, Point) {
     let bb = bbox_of(path).inflated(within);
-    let near = PathIndex::new(path);
+    let near = path_index(path);
     let mut best = (0, walk[0].start(), f64::INFINITY);
     for (k, s) in walk.iter().enumerate().filter(|(_, s)| s.bbox().intersects(&bb)) {
         // The segment of `path` nearest to this one, searched best first below the best so far
         // (a loop of thousands of segments against another).
         let sb = s.bbox();
         let exact = |o: usize| crate::geom::segment_distance(s, &path[o], eps).0;
-        if let Some((o, _)) = near
-            .index
-            .nearest_below(|b| b.distance_to_box(&sb), exact, best.2)
-        {
+        if let Some((o, _)) = near.nearest_below(|b| b.distance_to_box(&sb), exact, best.2) {
             let (d, p, _) = crate::geom::segment_distance(s, &path[o], eps);
             best = (k, p, d);
         }
@@ -1353,31 +1350,10 @@ fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (u
     (best.0, best.1)
 }
 
-/// The segments of a path in an index, to find those near a box in the path's order.
-struct PathIndex {
-    index: BoxIndex,
-    count: usize,
-}
-
-impl PathIndex {
-    fn new(path: &[Segment]) -> PathIndex {
-        let boxes: Vec<Aabb> = path.iter().map(Segment::bbox).collect();
-        PathIndex {
-            index: BoxIndex::new(&boxes),
-            count: path.len(),
-        }
-    }
-
-    /// The indices, ascending, of the segments whose boxes come within `d` of `b` (every one
-    /// when `d` is infinite); a superset of those within `d` of anything in `b`.
-    fn within(&self, b: &Aabb, d: f64) -> Vec<usize> {
-        if !d.is_finite() {
-            return (0..self.count).collect();
-        }
-        let mut found: Vec<usize> = self.index.intersecting(&b.inflated(d)).collect();
-        found.sort_unstable();
-        found
-    }
+/// The boxes of a path's segments in an index, by segment.
+fn path_index(path: &[Segment]) -> BoxIndex {
+    let boxes: Vec<Aabb> = path.iter().map(Segment::bbox).collect();
+    BoxIndex::new(&boxes)
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
