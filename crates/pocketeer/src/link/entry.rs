@@ -18,9 +18,9 @@ pub struct Helix {
 
 /// Looks for a helix inside the part that is cut first: its circle at least `tool_radius` from
 /// every wall (no gouge), its centre at least `part_distance` from them and inside `outer` (so
-/// it lies in that part; `outer` comes with its box), as large as `preferred` if possible and never smaller than
-/// `smallest`, then nearest to `target`. `samples` are points of the part's paths with their
-/// normals into the part.
+/// it lies in that part; `outer` comes with its box), as large as `preferred` if possible and
+/// never smaller than `smallest`, then nearest to `target`. `samples` are points of the part's
+/// paths with their normals into the part.
 #[allow(clippy::too_many_arguments)]
 pub fn find_helix(
     pocket: &PreparedPocket,

@@ -504,14 +504,15 @@ impl<'a> Linker<'a> {
             let k = nearest(&leaves, |&c| {
                 walk::distance_to(&loop_path(&plan.parts[c].outer.segments), here)
             });
-            let leaf = &plan.parts[leaves.swap_remove(k)];
-            self.cut_path(leaf, &loop_path(&leaf.outer.segments), false, reach);
+            let l = leaves.swap_remove(k);
+            let leaf = &plan.parts[l];
+            self.cut_path(l, &loop_path(&leaf.outer.segments), false, reach);
             let mut items = leaf.cleanups.clone();
             while !items.is_empty() {
                 let here = self.here();
                 let k = nearest(&items, |p| walk::distance_to(p, here));
                 let item = items.swap_remove(k);
-                self.cut_path(leaf, &item, false, reach);
+                self.cut_path(l, &item, false, reach);
             }
         }
     }
@@ -559,7 +560,7 @@ impl<'a> Linker<'a> {
             !items.is_empty() && (items.iter()).all(|p| to_outer < walk::distance_to(&p.0, here));
         if outer_first {
             leaves.ready(self, 0, &mut outer);
-            self.cut_path_with(part, &outer.0, &outer.1, first, reach);
+            self.cut_path_with(n, &outer.0, &outer.1, first, reach);
             first = false;
         }
         // The items' boxes: nearest() measures only those a box does not already rule out.
@@ -575,7 +576,7 @@ impl<'a> Linker<'a> {
             let mut item = items.swap_remove(k);
             let hole = hole_of.swap_remove(k);
             leaves.ready(self, ids.swap_remove(k), &mut item);
-            self.cut_path_with(part, &item.0, &item.1, first, reach);
+            self.cut_path_with(n, &item.0, &item.1, first, reach);
             first = false;
             if let Some(j) = hole {
                 self.cut_enclosed_holes(n, j);
@@ -583,7 +584,7 @@ impl<'a> Linker<'a> {
         }
         if !outer_first {
             leaves.ready(self, 0, &mut outer);
-            self.cut_path_with(part, &outer.0, &outer.1, first, reach);
+            self.cut_path_with(n, &outer.0, &outer.1, first, reach);
         }
         leaves.left
     }
@@ -646,7 +647,7 @@ impl<'a> Linker<'a> {
                 distance: part.distance,
                 cut: &[],
             };
-            self.cut_path(part, &loop_path(&part.holes[h].segments), false, reach);
+            self.cut_path(parent, &loop_path(&part.holes[h].segments), false, reach);
             (at, hole, nearest_walls) = (parent, h, Some(part.distance));
         }
         if let Some(d) = nearest_walls {
@@ -687,17 +688,18 @@ impl<'a> Linker<'a> {
         best.map(|(k, _)| k)
     }
 
-    /// Cuts one loop or clean-up path of `part`; `enter` when the tool comes to it through
+    /// Cuts one loop or clean-up path of the part `part` (its index); `enter` when the tool comes to it through
     /// uncut stock (the first path of a part with nothing inside it), else reached at depth
     /// within `reach`.
-    fn cut_path(&mut self, part: &Part, item: &Path, enter: bool, reach: Reach) {
+    fn cut_path(&mut self, part: usize, item: &Path, enter: bool, reach: Reach) {
         self.cut_path_with(part, item, &[], enter, reach);
     }
 
     /// [`Linker::cut_path`], cutting the clean-up paths `on_the_way` as excursions from the
     /// walk of the loop `item` (see [`Linker::excursions`]).
-    fn cut_path_with(&mut self, part: &Part, item: &Path, on_the_way: &[Path], enter: bool, reach: Reach) {
+    fn cut_path_with(&mut self, n: usize, item: &Path, on_the_way: &[Path], enter: bool, reach: Reach) {
         self.progress.advance(1);
+        let part = &self.plan().parts[n];
         // The plan's loops run with the material on their right (outer loops counter-clockwise,
         // loops round islands clockwise): climb as they are.
         let reverse = self.params.direction == Direction::Conventional;
@@ -747,21 +749,20 @@ impl<'a> Linker<'a> {
             self.feed_through(&way);
         } else if enter || !self.down {
             self.retract();
-            self.enter(part, &segments);
+            self.enter(n, &segments);
         } else if blocked.unwrap_or_else(|| !self.stays_inside(here, q, reach.distance)) {
             // Round what is in the way, inside the part, when faster than going over the top:
             // down onto a floor cut near `q` and across, or, where there is none, a new entry.
-            let t = &self.params.time;
             let landing = self.landing(reach, q);
             let over = match landing {
-                Some(p) => self.hop_seconds(here.distance(p), self.z) + t.feed_seconds(p.distance(q), t.feed),
+                Some(p) => self.hop_via(p, q),
                 None => self.hop_seconds(here.distance(q), self.z_top) + self.entry_seconds(),
             };
             match self.detour_within(reach.distance, q, over, f64::INFINITY) {
                 Some(way) => self.feed_through(&way),
                 None => {
                     self.retract();
-                    self.come_down_at(landing, part, &segments);
+                    self.come_down_at(landing, n, &segments);
                 }
             }
         } else if let Some(p) = self.hop_rather_than(q, reach) {
@@ -1026,13 +1027,19 @@ impl<'a> Linker<'a> {
             return None;
         }
         let p = self.landing(reach, q)?;
-        let hop = self.hop_seconds(self.here().distance(p), self.z) + t.feed_seconds(p.distance(q), t.feed);
-        (hop < straight).then_some(p)
+        (self.hop_via(p, q) < straight).then_some(p)
+    }
+
+    /// Seconds to go over the top from where the tool is down onto the floor at `p`, cut at
+    /// this pass's depth, and across to `q` at the cutting feed.
+    fn hop_via(&self, p: Point, q: Point) -> f64 {
+        let t = &self.params.time;
+        self.hop_seconds(self.here().distance(p), self.z) + t.feed_seconds(p.distance(q), t.feed)
     }
 
     /// Back down after a retract to start `segments` of `part`: straight down onto `landing`
     /// (see [`Linker::landing`]), then across; a new entry when there is none.
-    fn come_down_at(&mut self, landing: Option<Point>, part: &Part, segments: &[Segment]) {
+    fn come_down_at(&mut self, landing: Option<Point>, part: usize, segments: &[Segment]) {
         let q = segments[0].start();
         match landing {
             Some(p) => {
@@ -1092,12 +1099,12 @@ impl<'a> Linker<'a> {
     /// none of those gives a helix of the preferred radius: a plate's part has a loop round
     /// every hole, it is entered again after each retract, and the helix is found within a
     /// millimetre of the start.
-    fn find_helix(&self, part: &Part, segments: &[Segment]) -> Option<Helix> {
+    fn find_helix(&self, part: usize, segments: &[Segment]) -> Option<Helix> {
         let r = self.plan().tool_radius;
         let q = segments[0].start();
         let preferred = 0.5 * r;
         let parts = &self.plan().parts;
-        let mut at = parts.iter().position(|p| std::ptr::eq(p, part));
+        let mut at = Some(part);
         // The walk to start is looked about in the part it is of only.
         let mut walk = Some((segments, bbox_of(segments)));
         while let Some(i) = at {
@@ -1164,8 +1171,8 @@ impl<'a> Linker<'a> {
         None
     }
 
-    /// Enters the stock to start `segments` (a walk of `part`) at the pass depth.
-    fn enter(&mut self, part: &Part, segments: &[Segment]) {
+    /// Enters the stock to start `segments` (a walk of the part `part`) at the pass depth.
+    fn enter(&mut self, part: usize, segments: &[Segment]) {
         let (p, r) = (self.params, self.plan().tool_radius);
         let q = segments[0].start();
         if p.entry == Entry::Helix {

@@ -196,21 +196,27 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
     );
 }
 
+/// A plate of `nx` x `ny` round holes of radius 4 at a 20 mm pitch, 10 mm in from its edges,
+/// and the holes' centres.
+fn plate_of_holes(nx: usize, ny: usize) -> (Pocket, Vec<Point>) {
+    let hole = |c: Point| Contour::new(vec![Segment::Arc(Arc::circle(c, 4.0))]).reversed();
+    let centres: Vec<Point> = (0..nx)
+        .flat_map(|i| (0..ny).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
+        .collect();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 20.0 * nx as f64, 20.0 * ny as f64),
+        islands: centres.iter().copied().map(hole).collect(),
+    };
+    (pocket, centres)
+}
+
 #[test]
 fn the_loops_round_one_island_at_two_levels_are_cut_one_after_the_other() {
     // A plate of 4 x 3 holes at a 20 mm pitch: at 5.4 mm from the walls the loops round the
     // two inner holes still lie in one part with the others, at 3 mm inside them. Each inner
     // hole's loop at 3 mm is cut right after its loop at 5.4 mm, 2.4 mm away, instead of with
     // the other loops at 3 mm, each reached by a link of its own.
-    let hole =
-        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
-    let centres: Vec<Point> = (0..4)
-        .flat_map(|i| (0..3).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
-        .collect();
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 80.0, 60.0),
-        islands: centres.iter().map(|c| hole(c.x, c.y)).collect(),
-    };
+    let (pocket, centres) = plate_of_holes(4, 3);
     let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
     // The arcs at depth round a hole's centre at 3 and 5.4 mm from its wall, in order.
     let mut rounds: Vec<(usize, bool)> = Vec::new();
@@ -247,15 +253,7 @@ fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
     // diamond, a leaf its loop alone clears. It is cut once the loops at 5.4 mm round its
     // four holes are, straight out from the last of them (2.4 mm) and back, instead of first,
     // reached through full stock by a slot or an entry of its own.
-    let hole =
-        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
-    let centres: Vec<Point> = (0..4)
-        .flat_map(|i| (0..3).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
-        .collect();
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 80.0, 60.0),
-        islands: centres.iter().map(|c| hole(c.x, c.y)).collect(),
-    };
+    let (pocket, centres) = plate_of_holes(4, 3);
     let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
     let diamonds: Vec<Point> = (1..4)
         .flat_map(|i| (1..3).map(move |j| Point::new(20.0 * i as f64, 20.0 * j as f64)))
@@ -489,14 +487,7 @@ fn a_loop_behind_an_island_with_no_floor_cut_near_it_is_reached_round_the_island
     // the straight way often crosses a hole, and near the next hole nothing is cut yet, so
     // going over the top means a new entry (a helix of some 3.4 s here) where the way round
     // the hole, along the loop just cut, takes under two seconds.
-    let hole =
-        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 4.0))]).reversed();
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 160.0, 120.0),
-        islands: (0..8)
-            .flat_map(|i| (0..6).map(move |j| hole(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
-            .collect(),
-    };
+    let (pocket, _) = plate_of_holes(8, 6);
     let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
     assert_eq!(entries(&l), 1);
 }
