@@ -87,7 +87,16 @@ pub fn along_last(
         .into_iter()
         .take(MAX_TRIES)
         .find(|&(_, _, _, a, b)| clear(a, b))?;
-    let s: f64 = lengths[..i].iter().sum::<f64>() + t * lengths[i];
+    Some((back_along(last, closed, i, t, eps), b))
+}
+
+/// The moves from the end of the walk `last` (where the tool is) along it to its point at
+/// parameter `t` of segment `i`: back along it, or, when it is `closed` (its end is its start
+/// too), forward from its start where that is shorter.
+pub fn back_along(last: &[Segment], closed: bool, i: usize, t: f64, eps: f64) -> Vec<Segment> {
+    let lengths = last.iter().map(Segment::length);
+    let total: f64 = lengths.clone().sum();
+    let s: f64 = lengths.take(i).sum::<f64>() + t * last[i].length();
     let forward = closed && s < total - s;
     let mut moves: Vec<Segment> = Vec::new();
     if forward {
@@ -98,7 +107,7 @@ pub fn along_last(
         moves.push(last[i].subsegment(t, 1.0).reversed());
     }
     moves.retain(|m| m.length() > eps);
-    Some((moves, b))
+    moves
 }
 
 #[cfg(test)]
@@ -137,6 +146,21 @@ mod tests {
             end.x == 10.0 && end.y > 0.5 && (b.x - 14.0).abs() < 1e-9,
             "{end:?} {b:?}"
         );
+    }
+
+    #[test]
+    fn back_along_a_closed_walk_goes_the_shorter_way_round() {
+        let p = Point::new;
+        // A 10 mm square walked from (0, 0): its point (10, 2) is 12 mm on forward, 28 mm back.
+        let walk = square(0.0, 0.0, 10.0);
+        let moves = back_along(&walk, true, 1, 0.2, 1e-9);
+        assert_eq!(moves.len(), 2);
+        assert_eq!(moves[0].start(), p(0.0, 0.0));
+        assert!(moves[1].end().distance(p(10.0, 2.0)) < 1e-12);
+        // An open walk is only ever followed back: 8 mm down the right edge from (10, 10).
+        let moves = back_along(&walk[..2], false, 1, 0.2, 1e-9);
+        assert_eq!(moves.len(), 1);
+        assert!((moves[0].length() - 8.0).abs() < 1e-12);
     }
 
     #[test]

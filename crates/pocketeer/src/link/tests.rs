@@ -248,6 +248,47 @@ fn the_loops_round_one_island_at_two_levels_are_cut_one_after_the_other() {
 }
 
 #[test]
+fn the_way_on_from_a_hole_is_along_the_innermost_of_its_loops() {
+    // A plate of 6 x 5 holes: after the loops round a hole at 5.4 and 3 mm from its wall, the
+    // tool goes on along the loop at 3 mm (radius 7) to where it faces the next path and
+    // straight out from there, not straight out and then along the loop at 5.4 mm (radius
+    // 9.4), a quarter longer (before, seven of the holes had their loop at 9.4 mm followed a
+    // quarter or more of a turn again).
+    let (pocket, centres) = plate_of_holes(6, 5);
+    let (l, _, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    // By hole, the sweep of the arcs at depth round it at each radius.
+    let mut swept = vec![(0.0, 0.0); centres.len()];
+    let mut at = l.toolpath.start;
+    for m in &l.toolpath.moves {
+        if let Move::Arc {
+            to, center, sweep, ..
+        } = *m
+        {
+            let r = center.distance(at.xy());
+            if let Some(k) = centres.iter().position(|c| c.distance(center) < 1e-6) {
+                if at.z == -2.0 && to.z == -2.0 {
+                    if (r - 7.0).abs() < 1e-6 {
+                        swept[k].0 += sweep.abs();
+                    } else if (r - 9.4).abs() < 1e-6 {
+                        swept[k].1 += sweep.abs();
+                    }
+                }
+            }
+        }
+        at = m.to();
+    }
+    let full = std::f64::consts::TAU + 1e-6;
+    assert!(
+        swept.iter().filter(|s| s.0 > full).count() >= 2,
+        "the tool goes on along the loops at radius 7: {swept:?}"
+    );
+    assert!(
+        swept.iter().all(|s| s.1 <= full),
+        "never along the loops at radius 9.4: {swept:?}"
+    );
+}
+
+#[test]
 fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
     // The same plate: at 7.8 mm from the walls what is left between four holes is a small
     // diamond, a leaf its loop alone clears. It is cut once the loops at 5.4 mm round its
