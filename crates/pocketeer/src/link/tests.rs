@@ -199,7 +199,13 @@ fn a_ring_round_a_hub_crosses_from_wall_to_hub_once_a_level_at_most() {
 /// A plate of `nx` x `ny` round holes of radius 4 at a 20 mm pitch, 10 mm in from its edges,
 /// and the holes' centres.
 fn plate_of_holes(nx: usize, ny: usize) -> (Pocket, Vec<Point>) {
-    let hole = |c: Point| Contour::new(vec![Segment::Arc(Arc::circle(c, 4.0))]).reversed();
+    plate_of_round_islands(nx, ny, 4.0)
+}
+
+/// A plate of `nx` x `ny` round islands of radius `r` at a 20 mm pitch, 10 mm from its edges,
+/// and their centres.
+fn plate_of_round_islands(nx: usize, ny: usize, r: f64) -> (Pocket, Vec<Point>) {
+    let hole = |c: Point| Contour::new(vec![Segment::Arc(Arc::circle(c, r))]).reversed();
     let centres: Vec<Point> = (0..nx)
         .flat_map(|i| (0..ny).map(move |j| Point::new(10.0 + 20.0 * i as f64, 10.0 + 20.0 * j as f64)))
         .collect();
@@ -337,6 +343,54 @@ fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
             assert!(
                 c == host || ring[ring.len() - 1] < first,
                 "the loop round {c:?} done before the diamond at {d:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn nested_loops_between_four_islands_are_cut_from_the_loops_round_them() {
+    // Islands of radius 5 at a 20 mm pitch: at 2.4 mm stepover, what is left between four of
+    // them is a part of two nested loops, a star and a small diamond inside it. They are cut
+    // after the loops round the islands, the star from the last of them and the diamond from
+    // the star, each reached by a step at depth, instead of first, the diamond reached through
+    // full stock by a slot or an entry.
+    let (pocket, _) = plate_of_round_islands(4, 3, 5.0);
+    let (l, plan, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    let chains: Vec<(usize, usize)> = (plan.parts.iter().enumerate())
+        .filter(|(_, p)| p.holes.is_empty() && p.children.len() == 1)
+        .map(|(k, p)| (k, p.children[0]))
+        .filter(|&(_, c)| plan.parts[c].children.is_empty())
+        .collect();
+    assert_eq!(
+        chains.len(),
+        6,
+        "a star and its diamond between every four islands"
+    );
+    let mut from = l.toolpath.start;
+    let mut moves = Vec::new();
+    for m in &l.toolpath.moves {
+        moves.push((from, *m));
+        from = m.to();
+    }
+    // The first move at depth along the loop of part `k`.
+    let first_on = |k: usize| {
+        let on = |p: Point| (plan.parts[k].outer.segments.iter()).any(|s| distance_from_segment(s, p) < 1e-6);
+        (0..moves.len())
+            .find(|&i| {
+                let (at, m) = moves[i];
+                at.z == -2.0 && m.to().z == -2.0 && on(at.xy()) && on(m.to().xy())
+            })
+            .unwrap_or_else(|| panic!("the loop of part {k} is cut"))
+    };
+    for (star, diamond) in chains {
+        let (s, d) = (first_on(star), first_on(diamond));
+        assert!(s < d, "the star before its diamond");
+        for i in [s, d] {
+            let (at, step) = moves[i - 1];
+            assert!(
+                matches!(step, Move::Line { .. }) && at.z == -2.0,
+                "reached by a step at depth: {step:?}"
             );
         }
     }
