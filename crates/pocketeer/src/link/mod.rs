@@ -937,17 +937,21 @@ impl<'a> Linker<'a> {
         // Where each excursion leaves the walk: segment index, parameter, the path oriented to
         // start at its nearer end, and for a leaf the way back (see below).
         let reverse = self.params.direction == Direction::Conventional;
+        // The walk's segments in an index, made for the first leaf: where the walk passes the
+        // point a leaf is nearest to is looked up in it.
+        let mut walk_index = None;
         let mut stops: Vec<Stop> = cleanups
             .iter()
             .map(|c| {
                 let c = match c {
                     Excursion::Cleanup(c) => c,
-                    Excursion::Leaf(leaf, loops) => {
+                    Excursion::Leaf(leaf, loops, from) => {
                         self.uncut.cut(*leaf);
                         // A leaf's loops: from the walk's point nearest to the outermost, round
                         // it from there, a step in to the next one's nearest point and round it,
                         // and so on; back by the steps the other way.
-                        let (k, p) = nearest_pair(segments, &loops[0].segments, r + eps, eps);
+                        let walk_index = walk_index.get_or_insert_with(|| path_index(segments));
+                        let (k, p) = on_walk(segments, walk_index, *from);
                         let t = crate::geom::closest_param(&segments[k], p);
                         let mut path = walk::walk_from(&loops[0], p, reverse, eps);
                         let mut back = vec![p];
@@ -1493,6 +1497,7 @@ impl<'a> LeavesBeside<'a> {
             }
             match nearest {
                 Some((_, _, p, q)) if linker.stays_inside(p, q, self.part.distance) => {
+                    let from = p;
                     let chain = linker.chain(self.ids[l]).unwrap_or_default();
                     let plan = linker.plan();
                     item.1.push(Excursion::Leaf(
@@ -1500,6 +1505,7 @@ impl<'a> LeavesBeside<'a> {
                         (chain.iter())
                             .map(|&c| loop_path(&plan.parts[c].outer.segments))
                             .collect(),
+                        from,
                     ));
                 }
                 _ => self.left.push(self.ids[l]),
@@ -1508,23 +1514,14 @@ impl<'a> LeavesBeside<'a> {
     }
 }
 
-/// The segment of `walk` that comes nearest to `path`, and its point nearest, when they come
-/// within `within` (else the walk's start).
-fn nearest_pair(walk: &[Segment], path: &[Segment], within: f64, eps: f64) -> (usize, Point) {
-    let bb = bbox_of(path).inflated(within);
-    let near = path_index(path);
-    let mut best = (0, walk[0].start(), f64::INFINITY);
-    for (k, s) in walk.iter().enumerate().filter(|(_, s)| s.bbox().intersects(&bb)) {
-        // The segment of `path` nearest to this one, searched best first below the best so far
-        // (a loop of thousands of segments against another).
-        let sb = s.bbox();
-        let exact = |o: usize| crate::geom::segment_distance(s, &path[o], eps).0;
-        if let Some((o, _)) = near.nearest_below(|b| b.distance_to_box(&sb), exact, best.2) {
-            let (d, p, _) = crate::geom::segment_distance(s, &path[o], eps);
-            best = (k, p, d);
-        }
+/// The segment of `walk` (its segments' boxes in `index`) nearest to `p`, a point of the loop
+/// walked, and its point nearest to `p`: where the walk passes `p`.
+fn on_walk(walk: &[Segment], index: &BoxIndex, p: Point) -> (usize, Point) {
+    let exact = |k: usize| crate::geom::distance_from_segment(&walk[k], p);
+    match index.nearest_below(|b| b.distance_sq(p).sqrt(), exact, f64::INFINITY) {
+        Some((k, _)) => (k, crate::geom::closest_point(&walk[k], p)),
+        None => (0, walk[0].start()),
     }
-    (best.0, best.1)
 }
 
 /// The boxes of a path's segments in an index, by segment.
@@ -1533,9 +1530,6 @@ fn path_index(path: &[Segment]) -> BoxIndex {
     BoxIndex::new(&boxes)
 }
 
-/// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
-/// `distance` from every wall (the region of a part whose inside is cut), coming down after a
-/// retract onto a loop of the parts `cut`.
 /// The plain leaves of nested loops of a part waiting to be cut after its paths (see
 /// [`Linker::cut_part`]), by the boxes of their outer loops. Leaves of one loop are left out:
 /// that loop alone clears such a leaf, which is about a stepover across, and a link through it
@@ -1603,8 +1597,9 @@ type Stop = (usize, f64, Vec<Segment>, Option<Vec<Point>>);
 enum Excursion {
     /// A clean-up path.
     Cleanup(Path),
-    /// A plain leaf (its part) and its loops, outermost first (see [`Linker::is_plain_leaf`]).
-    Leaf(usize, Vec<Path>),
+    /// A plain leaf (its part), its loops, outermost first (see [`Linker::is_plain_leaf`]),
+    /// and the point of the loop it is cut from nearest to it.
+    Leaf(usize, Vec<Path>, Point),
 }
 
 /// Where the tool is left by [`Linker::cut_enclosed_holes`]: on the innermost of the loops round
@@ -1619,6 +1614,9 @@ struct Ladder {
     inner_distance: f64,
 }
 
+/// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
+/// `distance` from every wall (the region of a part whose inside is cut), coming down after a
+/// retract onto a loop of the parts `cut`.
 #[derive(Clone, Copy)]
 struct Reach<'r> {
     distance: f64,
