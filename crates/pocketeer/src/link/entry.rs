@@ -155,11 +155,38 @@ pub fn shortest_ramp(tool_radius: f64) -> f64 {
     0.5 * tool_radius
 }
 
-/// Ramps down from `z_top` to `z` along `walk` (a closed walk, ending where it starts), as
-/// many laps as the angle needs, so that the tool ends at the walk's start at depth `z`.
+/// Ramps down from `z_top` to `z` along `walk` (a closed walk, ending where it starts), so that
+/// the tool ends at the walk's start at depth `z`: out along the walk for half the length the
+/// angle needs and back (a walk of a wall loop is many times that: a whole lap at that slope
+/// took 0.8 m on a plate), or, on a walk shorter than that half, as many laps as the angle
+/// needs.
 pub fn ramp(path: &mut Toolpath, walk: &[Segment], z_top: f64, z: f64, angle: f64) {
     let lap = length(walk);
     let needed = (z_top - z) / angle.tan();
+    if lap >= 0.5 * needed && needed > 0.0 {
+        // Out: the walk's first `half`, down to the middle depth; back the same way to `z`.
+        let half = 0.5 * needed;
+        let mut out: Vec<Segment> = Vec::new();
+        let mut done = 0.0;
+        for s in walk {
+            let l = s.length();
+            if done + l >= half {
+                out.push(s.subsegment(0.0, ((half - done) / l).clamp(0.0, 1.0)));
+                break;
+            }
+            out.push(*s);
+            done += l;
+        }
+        out.retain(|s| s.length() > 0.0);
+        let back: Vec<Segment> = out.iter().rev().map(Segment::reversed).collect();
+        let mut done = 0.0;
+        for s in out.iter().chain(&back) {
+            done += s.length();
+            let zs = z_top + (z - z_top) * (done / needed).min(1.0);
+            emit(path, s, zs, Feed::Ramp);
+        }
+        return;
+    }
     let laps = (needed / lap).ceil().max(1.0) as usize;
     let total = lap * laps as f64;
     let mut done = 0.0;
@@ -169,5 +196,48 @@ pub fn ramp(path: &mut Toolpath, walk: &[Segment], z_top: f64, z: f64, angle: f6
             let zs = z_top + (z - z_top) * (done / total).min(1.0);
             emit(path, s, zs, Feed::Ramp);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Contour;
+
+    #[test]
+    fn a_ramp_on_a_long_loop_goes_out_and_back_not_round_it() {
+        // A 100 mm square walked from (0, 0), 2 mm down at 3 degrees: 38.2 mm of ramp, out
+        // 19.1 mm along the bottom edge and back, not a 400 mm lap at a shallower slope.
+        let p = Point::new;
+        let walk = Contour::polygon(&[p(0.0, 0.0), p(100.0, 0.0), p(100.0, 100.0), p(0.0, 100.0)]).segments;
+        let angle = 3f64.to_radians();
+        let mut path = Toolpath::new(Point3::new(0.0, 0.0, 0.0));
+        ramp(&mut path, &walk, 0.0, -2.0, angle);
+        let needed = 2.0 / angle.tan();
+        let mut at = path.start;
+        let mut planar = 0.0;
+        for m in &path.moves {
+            let to = m.to();
+            let run = at.xy().distance(to.xy());
+            // On the walk's bottom edge, never steeper than the angle.
+            assert!(
+                to.y.abs() < 1e-12 && (0.0..=0.5 * needed + 1e-9).contains(&to.x),
+                "{to:?}"
+            );
+            assert!(at.z - to.z <= run * angle.tan() + 1e-9, "{at:?} -> {to:?}");
+            planar += run;
+            at = to;
+        }
+        assert!((planar - needed).abs() < 1e-9, "{planar} mm");
+        assert!(
+            at.distance(Point3::new(0.0, 0.0, -2.0)) < 1e-9,
+            "ends at the start at depth: {at:?}"
+        );
+        // A loop shorter than half of that is gone round as many times as it takes.
+        let small = Contour::polygon(&[p(0.0, 0.0), p(4.0, 0.0), p(4.0, 4.0), p(0.0, 4.0)]).segments;
+        let mut path = Toolpath::new(Point3::new(0.0, 0.0, 0.0));
+        ramp(&mut path, &small, 0.0, -2.0, angle);
+        assert_eq!(path.moves.len(), 4 * (needed / 16.0).ceil() as usize);
+        assert!(path.position().distance(Point3::new(0.0, 0.0, -2.0)) < 1e-9);
     }
 }
