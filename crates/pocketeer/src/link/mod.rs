@@ -445,6 +445,13 @@ impl<'a> Linker<'a> {
         self.plan().parts[n].parent.is_some() && self.chain(n).is_some()
     }
 
+    /// True when a part of the plain leaf `n` has clean-up paths: it is cut after its parent
+    /// (see [`Linker::cut_small_leaves`]), not on the way round the parent's paths.
+    fn has_cleanups(&self, n: usize) -> bool {
+        let parts = &self.plan().parts;
+        (self.chain(n).unwrap_or_default().iter()).any(|&c| !parts[c].cleanups.is_empty())
+    }
+
     /// The part `n` and the parts nested in it, outermost first, when each has no island and
     /// no clean-up path and all but the last exactly one child (the last none): what its
     /// loops, cut from the outermost inwards, clear. Of more than one loop only when they are
@@ -457,7 +464,7 @@ impl<'a> Linker<'a> {
         let mut chain = vec![n];
         loop {
             let part = &parts[chain[chain.len() - 1]];
-            if !part.holes.is_empty() || !part.cleanups.is_empty() {
+            if !part.holes.is_empty() {
                 return None;
             }
             match part.children[..] {
@@ -530,8 +537,9 @@ impl<'a> Linker<'a> {
             && b.max.y - b.min.y <= d
     }
 
-    /// Cuts the small leaves of `parent`, just cut, nearest first: each reached at depth
-    /// through the parent's region (cleared but for the leaves' own small remains).
+    /// Cuts the small leaves of `parent`, just cut, and its plain leaves not cut on the way
+    /// round its paths, nearest first: each reached at depth through the parent's region
+    /// (cleared but for the leaves' own remains).
     fn cut_small_leaves(&mut self, parent: usize, mut leaves: Vec<usize>) {
         let plan = self.plan();
         let cut = [parent];
@@ -549,23 +557,36 @@ impl<'a> Linker<'a> {
             self.uncut.cut(l);
             self.cut_path(l, &loop_path(&leaf.outer.segments), false, reach);
             // A plain leaf's nested parts, each from the one around it.
-            if self.is_plain_leaf(l) {
-                let chain = self.chain(l).unwrap_or_default();
-                for w in chain.windows(2) {
-                    let cut = [w[0]];
-                    let reach = Reach {
-                        distance: plan.parts[w[0]].distance,
-                        cut: &cut,
-                    };
-                    self.cut_path(w[1], &loop_path(&plan.parts[w[1]].outer.segments), false, reach);
-                }
+            let chain = self
+                .chain(l)
+                .filter(|_| self.is_plain_leaf(l))
+                .unwrap_or_else(|| vec![l]);
+            for w in chain.windows(2) {
+                let cut = [w[0]];
+                let reach = Reach {
+                    distance: plan.parts[w[0]].distance,
+                    cut: &cut,
+                };
+                self.cut_path(w[1], &loop_path(&plan.parts[w[1]].outer.segments), false, reach);
             }
-            let mut items = leaf.cleanups.clone();
+            // Then the clean-up paths of all of them, nearest first, each from the part around
+            // its part (they lie between a part's loop and the loop inside it, both cut now).
+            let mut items: Vec<(usize, &Path)> = (chain.iter())
+                .flat_map(|&c| plan.parts[c].cleanups.iter().map(move |p| (c, p)))
+                .collect();
             while !items.is_empty() {
                 let here = self.here();
-                let k = nearest(&items, |p| walk::distance_to(p, here));
-                let item = items.swap_remove(k);
-                self.cut_path(l, &item, false, reach);
+                let k = nearest(&items, |(_, p)| walk::distance_to(p, here));
+                let (c, item) = items.swap_remove(k);
+                let around = [plan.parts[c].parent.unwrap_or(parent)];
+                let reach = match c == l {
+                    true => reach,
+                    false => Reach {
+                        distance: plan.parts[around[0]].distance,
+                        cut: &around,
+                    },
+                };
+                self.cut_path(c, item, false, reach);
             }
         }
     }
@@ -1496,7 +1517,9 @@ impl<'a> LeavesBeside<'a> {
                 }
             }
             match nearest {
-                Some((_, _, p, q)) if linker.stays_inside(p, q, self.part.distance) => {
+                Some((_, _, p, q))
+                    if linker.stays_inside(p, q, self.part.distance) && !linker.has_cleanups(self.ids[l]) =>
+                {
                     let from = p;
                     let chain = linker.chain(self.ids[l]).unwrap_or_default();
                     let plan = linker.plan();
@@ -1547,7 +1570,7 @@ struct UncutLeaves {
 impl UncutLeaves {
     fn new(plan: &ClearPlan, leaves: &[usize]) -> UncutLeaves {
         let leaves: Vec<usize> = (leaves.iter().copied())
-            .filter(|&l| !plan.parts[l].children.is_empty())
+            .filter(|&l| !plan.parts[l].children.is_empty() || !plan.parts[l].cleanups.is_empty())
             .collect();
         let boxes: Vec<Aabb> = leaves.iter().map(|&l| plan.parts[l].outer.bbox()).collect();
         UncutLeaves {

@@ -397,6 +397,60 @@ fn nested_loops_between_four_islands_are_cut_from_the_loops_round_them() {
 }
 
 #[test]
+fn leaves_with_clean_up_paths_are_cut_after_the_loops_around_them() {
+    // Four islands of radius 8 at the 8-island rectangle's pitch, at 5.4 mm stepover (90 % of
+    // the diameter): what is left between them, and between them and the walls, are parts
+    // of nested loops with clean-up paths. Those are cut after the loops round them, from the
+    // outermost in, reached at depth, not first, from their innermost loop out, reached
+    // through full stock by a slot or an entry.
+    let island =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 8.0))]).reversed();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 86.0, 100.0),
+        islands: vec![
+            island(21.5, 25.0),
+            island(64.5, 25.0),
+            island(21.5, 75.0),
+            island(64.5, 75.0),
+        ],
+    };
+    let (l, plan, _) = linked_plan(&pocket, 5.4, Entry::Helix);
+    let leaves: Vec<usize> = (0..plan.parts.len())
+        .filter(|&k| {
+            let p = &plan.parts[k];
+            p.parent.is_some() && p.holes.is_empty() && p.children.len() <= 1 && !p.cleanups.is_empty()
+        })
+        .collect();
+    assert!(!leaves.is_empty(), "leaves with clean-up paths");
+    let mut from = l.toolpath.start;
+    let mut moves = Vec::new();
+    for m in &l.toolpath.moves {
+        moves.push((from, *m));
+        from = m.to();
+    }
+    // The first move at depth along one of `loops`.
+    let first_on = |loops: Vec<&Contour>| {
+        let on =
+            |p: Point| (loops.iter().flat_map(|c| &c.segments)).any(|s| distance_from_segment(s, p) < 1e-6);
+        (0..moves.len()).find(|&i| {
+            let (at, m) = moves[i];
+            at.z == -2.0 && m.to().z == -2.0 && on(at.xy()) && on(m.to().xy())
+        })
+    };
+    for k in leaves {
+        let parent = &plan.parts[plan.parts[k].parent.unwrap()];
+        let leaf = first_on(vec![&plan.parts[k].outer]).unwrap();
+        let around = first_on(parent.loops().collect()).unwrap();
+        assert!(leaf > around, "part {k} cut after the loops around it");
+        let (at, step) = moves[leaf - 1];
+        assert!(
+            at.z == -2.0 && !matches!(step, Move::Rapid { .. }),
+            "reached at depth"
+        );
+    }
+}
+
+#[test]
 fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
     // Two islands 60 mm apart: their loops at the walls' level are 46 mm apart, 2.8 s at the
     // cutting feed against about 1.3 s up, across at rapid, down and a retract's half second.
