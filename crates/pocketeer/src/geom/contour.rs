@@ -185,6 +185,37 @@ pub fn signed_area(segments: &[Segment]) -> f64 {
     0.5 * sum
 }
 
+/// True when the closed chain `segments` bounds a convex region: it turns one way only, its
+/// arcs bending the way it runs round and its joints turning that way or not at all (within
+/// `eps` of a turn against it, in the sine of the angle). A chain that winds round more than
+/// once is not told apart.
+///
+/// ```
+/// use pocketeer::geom::{is_convex, Arc, Contour, Point, Segment};
+/// let p = Point::new;
+/// let square = Contour::polygon(&[p(0.0, 0.0), p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]);
+/// assert!(is_convex(&square.segments, 1e-9));
+/// let notch = Contour::polygon(&[p(0.0, 0.0), p(2.0, 0.0), p(1.0, 1.0), p(2.0, 2.0), p(0.0, 2.0)]);
+/// assert!(!is_convex(&notch.segments, 1e-9));
+/// // A circle run clockwise (a loop round an island) is convex too.
+/// let c = Arc::circle(p(0.0, 0.0), 3.0).reversed();
+/// assert!(is_convex(&[Segment::Arc(c)], 1e-9));
+/// ```
+pub fn is_convex(segments: &[Segment], eps: f64) -> bool {
+    let ccw = signed_area(segments) > 0.0;
+    let turns_right_way = |turn: f64| if ccw { turn >= -eps } else { turn <= eps };
+    let arcs_bend_right_way = segments.iter().all(|s| match s {
+        Segment::Arc(a) => a.is_ccw() == ccw,
+        Segment::Line(_) => true,
+    });
+    let n = segments.len();
+    arcs_bend_right_way
+        && (0..n).all(|k| {
+            let (a, b) = (&segments[k], &segments[(k + 1) % n]);
+            turns_right_way(a.tangent_at(1.0).cross(b.tangent_at(0.0)))
+        })
+}
+
 /// Signed crossings of the ray from `p` towards +x with the piece from `a` to `b` whose points
 /// between have abscissa `x_at(y)`: +1 upwards, -1 downwards, 0 when it passes left of `p`.
 /// Half-open in y, so that a ray through a joint counts it once.

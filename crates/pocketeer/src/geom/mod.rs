@@ -20,7 +20,7 @@ mod tolerance;
 pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
 pub use cluster::{cluster_points, cluster_points_by};
-pub use contour::{bbox_of, signed_area, winding_number, Contour, WindingIndex};
+pub use contour::{bbox_of, is_convex, signed_area, winding_number, Contour, WindingIndex};
 pub use distance::{
     closest_param, closest_point, distance_from_segment, segment_distance, segments_nearer_than,
 };

@@ -754,12 +754,23 @@ impl<'a> Linker<'a> {
         let here = self.here();
         let way_out = next.and_then(|next| self.way_out(&outer, back_to, next, distance, inner_distance));
         match way_out {
-            Some((moves, out)) => {
+            Some(WayOut {
+                moves,
+                to,
+                onto_outer,
+            }) => {
                 walk::follow(&mut self.path, &moves, self.z);
-                self.path.line(Point3::at(out, self.z), Feed::Cut);
-                // The outermost loop walked from there: the tool is at its end again.
-                let walk = walk::walk_from(&loop_path(&outer.0), out, false, self.tol.eps);
-                self.last = (walk, true);
+                self.path.line(Point3::at(to, self.z), Feed::Cut);
+                self.last = if onto_outer {
+                    // The outermost loop walked from there: the tool is at its end again.
+                    (
+                        walk::walk_from(&loop_path(&outer.0), to, false, self.tol.eps),
+                        true,
+                    )
+                } else {
+                    // On the next path: no way along a path is needed to reach it.
+                    (Vec::new(), false)
+                };
             }
             None if self.stays_inside(here, back_to, inner_distance) => {
                 self.path.line(Point3::at(back_to, self.z), Feed::Cut);
@@ -780,7 +791,7 @@ impl<'a> Linker<'a> {
         next: &Path,
         distance: f64,
         inner_distance: f64,
-    ) -> Option<(Vec<Segment>, Point)> {
+    ) -> Option<WayOut> {
         let (here, eps) = (self.here(), self.tol.eps);
         let reverse = self.params.direction == Direction::Conventional;
         let q = walk::walk_from(next, back_to, reverse, eps)[0].start();
@@ -803,8 +814,63 @@ impl<'a> Linker<'a> {
         let t = &self.params.time;
         let faster_than_a_hop = t.feed_seconds(inner_length + out.distance(b), t.feed)
             < self.hop_seconds(back_to.distance(q), self.z);
-        (inner_length < outer_length && faster_than_a_hop && self.stays_inside(a, out, inner_distance))
-            .then_some((along_inner, out))
+        if !(inner_length < outer_length && faster_than_a_hop && self.stays_inside(a, out, inner_distance)) {
+            return None;
+        }
+        let straight_on = self
+            .straight_out(&along_inner, &outer.0, b, distance, inner_distance)
+            .filter(|moves| {
+                let p = moves.last().map_or(here, Segment::end);
+                walk::length(moves) + p.distance(b) < inner_length + out.distance(b)
+            });
+        Some(match straight_on {
+            Some(moves) => WayOut {
+                moves,
+                to: b,
+                onto_outer: false,
+            },
+            None => WayOut {
+                moves: along_inner,
+                to: out,
+                onto_outer: true,
+            },
+        })
+    }
+
+    /// The way out of the loops round one island (see [`Linker::way_out`]) straight to `b`,
+    /// the next path's point, from the earliest point of `along_inner` (the way along the
+    /// innermost loop, at `inner_distance` from the walls) it can go from: the moves along it
+    /// to there. Only where the outermost of the loops, `outer`, is convex (round a convex
+    /// island): the move then crosses it once, everything between it and the innermost is
+    /// cut, and beyond it the move keeps `distance` from the walls, as every link of the
+    /// part does. On the 300-hole plate this cuts the corner the way out along the innermost
+    /// loop and straight out to the outermost used to turn.
+    fn straight_out(
+        &self,
+        along_inner: &[Segment],
+        outer: &[Segment],
+        b: Point,
+        distance: f64,
+        inner_distance: f64,
+    ) -> Option<Vec<Segment>> {
+        let eps = self.tol.eps;
+        if along_inner.is_empty() || !crate::geom::is_convex(outer, 1e-9) {
+            return None;
+        }
+        // The earliest point is where the move grazes the island: a margin keeps it off.
+        let inner = inner_distance + clearance_slack(inner_distance, self.tol);
+        route::leave_early(along_inner, 0.01, |p| {
+            let across = Segment::Line(crate::geom::Line::new(p, b));
+            // Where the move crosses the outermost loop, nearest `b` (once only, as it is convex).
+            let crossing = (outer.iter())
+                .flat_map(|o| crate::geom::intersect(&across, o, eps).iter().collect::<Vec<_>>())
+                .filter_map(|i| match i {
+                    crate::geom::Intersection::Point { point, ta, .. } => Some((ta, point)),
+                    _ => None,
+                })
+                .max_by(|x, y| x.0.total_cmp(&y.0));
+            crossing.is_some_and(|(_, c)| self.stays_inside(p, c, inner) && self.stays_inside(c, b, distance))
+        })
     }
 
     /// The loop (0: `outer`, k: the k-th of `holes`) that cuts the clean-up path `c` on its
@@ -866,9 +932,15 @@ impl<'a> Linker<'a> {
                 if let Some((moves, start)) = self.route_along_last(reach.distance, item, segments[0].start())
                 {
                     let rerouted = walk::walk_from(item, start, reverse, self.tol.eps);
-                    let a = moves.last().map_or(here, Segment::end);
-                    if self.stays_inside(a, rerouted[0].start(), reach.distance) {
-                        route = Some(moves);
+                    let (a, q) = (moves.last().map_or(here, Segment::end), rerouted[0].start());
+                    if self.stays_inside(a, q, reach.distance) {
+                        // Off the path just cut as soon as the way across is clear: the corner
+                        // from its point nearest the next path is cut.
+                        // The earliest point is where the move grazes a wall: a margin keeps
+                        // it off.
+                        let d = reach.distance + clearance_slack(reach.distance, self.tol);
+                        let early = route::leave_early(&moves, 0.01, |p| self.stays_inside(p, q, d));
+                        route = Some(early.unwrap_or(moves));
                         segments = rerouted;
                     }
                 }
@@ -1618,6 +1690,16 @@ struct Ladder {
     outer: (Vec<Segment>, bool),
     /// The innermost loop's distance from the walls.
     inner_distance: f64,
+}
+
+/// The way out of the loops round one island (see [`Linker::leave_ladder`]).
+struct WayOut {
+    /// The moves along the innermost loop.
+    moves: Vec<Segment>,
+    /// Where the tool then goes straight: a point of the outermost loop, or of the next path.
+    to: Point,
+    /// Whether `to` is on the outermost loop.
+    onto_outer: bool,
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps

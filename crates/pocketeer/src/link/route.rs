@@ -110,6 +110,62 @@ pub fn back_along(last: &[Segment], closed: bool, i: usize, t: f64, eps: f64) ->
     moves
 }
 
+/// The shortest beginning of `walk` (from its start, where the tool is) from whose end the
+/// tool may leave it, `may_leave(p)` telling whether it may from the walk's point `p`: the
+/// moves to the earliest such point, found by halving to within `resolution` of it, where the
+/// points it may leave from are the walk's last stretch (as the points of a convex loop from
+/// which a point outside it is seen straight). None when it may not leave even from the
+/// walk's end.
+pub fn leave_early(
+    walk: &[Segment],
+    resolution: f64,
+    may_leave: impl Fn(Point) -> bool,
+) -> Option<Vec<Segment>> {
+    let total: f64 = walk.iter().map(Segment::length).sum();
+    let end = walk.last().map_or(Point::new(f64::NAN, f64::NAN), Segment::end);
+    if walk.is_empty() || !may_leave(end) {
+        return None;
+    }
+    let start = walk[0].start();
+    if may_leave(start) {
+        return Some(Vec::new());
+    }
+    // `lo` a length the tool may not leave at, `hi` one it may.
+    let (mut lo, mut hi) = (0.0, total);
+    while hi - lo > resolution {
+        let mid = 0.5 * (lo + hi);
+        if may_leave(point_along(walk, mid)) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some(beginning(walk, hi))
+}
+
+/// The point `s` along `walk` from its start (its end beyond its length).
+fn point_along(walk: &[Segment], s: f64) -> Point {
+    beginning(walk, s).last().map_or(walk[0].start(), Segment::end)
+}
+
+/// The moves of `walk` from its start to `s` along it.
+fn beginning(walk: &[Segment], s: f64) -> Vec<Segment> {
+    let mut moves = Vec::new();
+    let mut before = 0.0;
+    for seg in walk {
+        let l = seg.length();
+        if before + l >= s {
+            if l > 0.0 && s > before {
+                moves.push(seg.subsegment(0.0, (s - before) / l));
+            }
+            return moves;
+        }
+        moves.push(*seg);
+        before += l;
+    }
+    moves
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -146,6 +202,25 @@ mod tests {
             end.x == 10.0 && end.y > 0.5 && (b.x - 14.0).abs() < 1e-9,
             "{end:?} {b:?}"
         );
+    }
+
+    #[test]
+    fn the_tool_leaves_a_walk_at_its_earliest_point_from_which_it_may() {
+        let p = Point::new;
+        // Along two sides of a 10 mm square from (0, 0), leaving as soon as the tool is on
+        // its right side.
+        let walk = square(0.0, 0.0, 10.0);
+        let moves = leave_early(&walk[..2], 1e-3, |q| q.x >= 10.0 - 1e-12).unwrap();
+        let end = moves.last().unwrap().end();
+        assert!(end.distance(p(10.0, 0.0)) < 1e-3, "{end:?}");
+        assert!(moves.iter().all(|m| m.start().y == 0.0 && m.end().y == 0.0));
+        // From the start: no moves; from nowhere: none; from the end of an open walk only
+        // (three sides, to (0, 10)): all of it, to within the resolution.
+        assert!(leave_early(&walk, 1e-3, |_| true).unwrap().is_empty());
+        assert!(leave_early(&walk, 1e-3, |_| false).is_none());
+        let moves = leave_early(&walk[..3], 1e-3, |q| q.x < 1e-9 && q.y > 5.0).unwrap();
+        assert_eq!(moves.len(), 3);
+        assert!(moves[2].end().distance(p(0.0, 10.0)) < 1e-3);
     }
 
     #[test]

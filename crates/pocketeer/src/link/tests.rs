@@ -295,6 +295,36 @@ fn the_way_on_from_a_hole_is_along_the_innermost_of_its_loops() {
 }
 
 #[test]
+fn the_way_on_from_a_hole_leaves_its_innermost_loop_straight_for_the_next_path() {
+    // The same plate: from the loop at radius 7 round a hole the tool goes straight to the
+    // next path as soon as that move clears the hole (the moves are checked against the walls
+    // by `linked_plan`), not on to the point of the loop nearest the next path and out across
+    // the 2.4 mm between the loops, which turns a corner.
+    let (pocket, centres) = plate_of_holes(6, 5);
+    let (l, plan, _) = linked_plan(&pocket, 2.4, Entry::Helix);
+    let mut at = l.toolpath.start;
+    let mut at_depth = 0.0;
+    for m in &l.toolpath.moves {
+        if at.z == -2.0 && m.to().z == -2.0 {
+            at_depth += m.length(at);
+        }
+        at = m.to();
+    }
+    let paths: f64 = (plan.parts.iter())
+        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
+        .map(|c| c.segments.iter().map(Segment::length).sum::<f64>())
+        .sum();
+    // 452.8 mm of moves at depth besides the loops going out to the loop at 9.4 first, 440.1
+    // straight on.
+    let links = at_depth - paths;
+    assert!(
+        links < 446.0,
+        "{links} mm of links at depth round {} holes",
+        centres.len()
+    );
+}
+
+#[test]
 fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
     // The same plate: at 7.8 mm from the walls what is left between four holes is a small
     // diamond, a leaf its loop alone clears. It is cut once the loops at 5.4 mm round its
