@@ -54,6 +54,10 @@ const SLOT_CANDIDATES: usize = 4;
 /// [`Linker::to_enter`]); beyond it, the nearest.
 const MAX_TOURED_ENTRIES: usize = 200;
 
+/// Most paths of a part that the choice of the next is made by a tour over (see
+/// [`next_item`]); beyond it, the nearest.
+const MAX_TOURED_ITEMS: usize = 32;
+
 /// Spacing of the lattice a way round what is in the way is searched on, in tool radii: fine
 /// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
 const DETOUR_STEP_RADII: f64 = 0.25;
@@ -606,7 +610,7 @@ impl<'a> Linker<'a> {
         while !leaves.is_empty() {
             let here = self.here();
             let k = nearest(&leaves, |&c| {
-                walk::distance_to(&loop_path(&plan.parts[c].outer.segments), here)
+                walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here)
             });
             let l = leaves.swap_remove(k);
             let leaf = &plan.parts[l];
@@ -629,7 +633,7 @@ impl<'a> Linker<'a> {
                 .collect();
             while !items.is_empty() {
                 let here = self.here();
-                let k = nearest(&items, |(_, p)| walk::distance_to(p, here));
+                let k = nearest(&items, |(_, p)| walk::distance_to_start(p, here));
                 let (c, item) = items.swap_remove(k);
                 let around = [plan.parts[c].parent.unwrap_or(parent)];
                 let reach = Reach {
@@ -680,9 +684,9 @@ impl<'a> Linker<'a> {
         self.uncut = UncutLeaves::new(self.plan(), along);
         let mut ids: Vec<usize> = (1..=items.len()).collect();
         let here = self.here();
-        let to_outer = walk::distance_to(&outer.0, here);
+        let to_outer = walk::distance_to_start(&outer.0, here);
         let outer_first =
-            !items.is_empty() && (items.iter()).all(|p| to_outer < walk::distance_to(&p.0, here));
+            !items.is_empty() && (items.iter()).all(|p| to_outer < walk::distance_to_start(&p.0, here));
         if outer_first {
             leaves.ready(self, 0, &mut outer);
             self.cut_path_with(n, &outer.0, &outer.1, first, reach);
@@ -695,11 +699,7 @@ impl<'a> Linker<'a> {
         let mut ladder: Option<Ladder> = None;
         while !items.is_empty() {
             let here = ladder.as_ref().map_or_else(|| self.here(), |l| l.back_to);
-            let k = nearest_bounded(
-                &items,
-                |k| boxes[k].distance_sq(here).sqrt(),
-                |p| walk::distance_to(&p.0, here),
-            );
+            let k = next_item(&items, &boxes, here);
             boxes.swap_remove(k);
             let mut item = items.swap_remove(k);
             let hole = hole_of.swap_remove(k);
@@ -1752,6 +1752,23 @@ struct Ladder {
     outer: (Vec<Segment>, bool),
     /// The innermost loop's distance from the walls.
     inner_distance: f64,
+}
+
+/// Which of a part's paths `items` (with their `boxes`) to cut next from `here`: the first of
+/// a short tour over them (nearest neighbour and 2-opt over the middles of their boxes), where
+/// they are few; else the nearest. The nearest alone leaves the far ones for a long way back
+/// at the end: on the 90 % rectangle, a clean-up path in a corner 80 mm away, reached by a
+/// retract and a new entry.
+fn next_item(items: &[(Path, Vec<Excursion>)], boxes: &[Aabb], here: Point) -> usize {
+    if items.len() <= 2 || items.len() > MAX_TOURED_ITEMS {
+        return nearest_bounded(
+            items,
+            |k| boxes[k].distance_sq(here).sqrt(),
+            |p| walk::distance_to_start(&p.0, here),
+        );
+    }
+    let places: Vec<Point> = boxes.iter().map(|b| b.min.midpoint(b.max)).collect();
+    tour(&places, here).first().copied().unwrap_or(0)
 }
 
 /// Where no ready part is reached without an entry: the parts with a child cut that wait

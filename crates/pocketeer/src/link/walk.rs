@@ -47,8 +47,19 @@ pub fn walk_from(path: &Path, from: Point, reverse: bool, eps: f64) -> Vec<Segme
     out
 }
 
-/// Distance from `p` to the nearest point of `path`.
-pub fn distance_to(path: &Path, p: Point) -> f64 {
+/// How far `p` is from where the walk of `path` from `p` starts (see [`walk_from`]): its
+/// nearest point when it is closed, its nearer end when it is open. The next path is chosen
+/// by this: an open clean-up path that passes near the tool but ends far from it is not
+/// near (on the 90 % rectangle one along a wall, 80 mm from either end where it passed the
+/// tool, was taken for the nearest and reached by a retract and a new entry).
+pub fn distance_to_start(path: &Path, p: Point) -> f64 {
+    if !path.closed {
+        let (first, last) = (
+            path.segments[0].start(),
+            path.segments[path.segments.len() - 1].end(),
+        );
+        return p.distance(first).min(p.distance(last));
+    }
     path.segments
         .iter()
         .map(|s| distance_from_segment(s, p))
