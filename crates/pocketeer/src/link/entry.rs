@@ -19,8 +19,9 @@ pub struct Helix {
 /// Looks for a helix inside the part that is cut first: its circle at least `tool_radius` from
 /// every wall (no gouge), its centre at least `part_distance` from them and inside `outer` (so
 /// it lies in that part; `outer` comes with its box), as large as `preferred` if possible and
-/// never smaller than `smallest`, then nearest to `target`. `samples` are points of the part's
-/// paths with their normals into the part.
+/// never smaller than `smallest`, then nearest to `target`, and one that `reaches` (from
+/// whose end, see [`helix_end`], the tool can go on to `target`). `samples` are points of the
+/// part's paths with their normals into the part.
 #[allow(clippy::too_many_arguments)]
 pub fn find_helix(
     pocket: &PreparedPocket,
@@ -31,6 +32,7 @@ pub fn find_helix(
     preferred: f64,
     smallest: f64,
     target: Point,
+    reaches: impl Fn(&Helix) -> bool,
 ) -> Option<Helix> {
     // Pushed along the normal by these amounts, samples reach the middle of the part, small
     // or large; the middle of its box is a candidate too.
@@ -62,7 +64,11 @@ pub fn find_helix(
         if !pocket.contains(c) || !outer.contains(c) {
             continue;
         }
-        best = Some((Helix { center: c, radius }, score));
+        let helix = Helix { center: c, radius };
+        if !reaches(&helix) {
+            continue;
+        }
+        best = Some((helix, score));
     }
     best.map(|(h, _)| h)
 }
@@ -103,6 +109,12 @@ pub fn samples_within(segments: &[Segment], step: f64, disc: Option<(Point, f64)
         walked += len;
     }
     out
+}
+
+/// Where a helix entry (see [`helix_start`]) ends: the point of its circle nearest to
+/// `target`.
+pub fn helix_end(helix: &Helix, target: Point) -> Point {
+    helix.center + Vector::from_angle((target - helix.center).angle()) * helix.radius
 }
 
 /// Goes down along `helix` from `z_top` to `z` at no more than `angle` (radians) from the

@@ -1462,6 +1462,8 @@ impl<'a> Linker<'a> {
                     preferred,
                     0.1 * r,
                     q,
+                    // Else the tool would go back up after the helix and ramp.
+                    |h| self.stays_inside(entry::helix_end(h, q), q, r),
                 );
                 if found.is_some_and(|h| h.radius >= preferred * (1.0 - 1e-5)) {
                     return found;

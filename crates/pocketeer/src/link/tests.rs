@@ -852,3 +852,29 @@ fn entries_into_the_branches_of_a_pocket_follow_a_short_tour() {
     // 991.5 mm finishing each branch first, 834.3 now.
     assert!(across < 900.0, "{across} mm of rapids");
 }
+
+#[test]
+fn a_helix_is_made_only_where_the_tool_goes_on_from_it_at_depth() {
+    // The 75-hole plate at 5.4 mm stepover: the helix nearest where the first loop starts
+    // (at a corner of the plate) ended where the move on to the loop would touch the wall,
+    // and the tool went back up and ramped down again elsewhere. The helix is now chosen
+    // among those from whose end the move on is clear.
+    let (pocket, _) = plate_of_holes(15, 5);
+    let (l, _) = linked(&pocket, 5.4, Entry::Helix);
+    let moves = &l.toolpath.moves;
+    let mut at = l.toolpath.start;
+    for (k, m) in moves.iter().enumerate() {
+        let helix_ends = matches!(m, Move::Arc { to, .. } if to.z == -2.0 && at.z > -2.0);
+        if helix_ends {
+            // The helix's last turn at depth, then on at depth, not up.
+            let on = moves[k + 1..]
+                .iter()
+                .find(|m| !matches!(m, Move::Arc { to, .. } if to.z == -2.0));
+            assert!(
+                !matches!(on, Some(Move::Rapid { .. })),
+                "the helix ending at move {k} is left by a retract"
+            );
+        }
+        at = m.to();
+    }
+}
