@@ -4,14 +4,17 @@
 //!
 //! In: each pocket as a [`PreparedPocket`] with its [`ClearPlan`], and [`LinkParams`] (depth,
 //! step-down, heights, [`Direction`], [`Entry`]). Out: [`Linked`], the tool path and its
-//! [`LinkWarning`]s. The milling direction is chosen here ([`Direction`]); `entry.rs` finds
-//! helices and ramps, `lead.rs` the arcs onto and off the finishing loop, `walk.rs` where a
-//! loop is started.
+//! [`LinkWarning`]s. The milling direction is chosen here ([`Direction`]); `schedule.rs` the
+//! order the parts are cut in, `ladder.rs` the loops round one island cut towards it and the
+//! way out of them, `entry.rs` finds helices and ramps, `lead.rs` the arcs onto and off the
+//! finishing loop, `walk.rs` where a loop is started, `route.rs` and `detour.rs` the ways at
+//! depth, `order.rs` short tours.
 //!
 //! Each part of the clearing tree is cut after everything inside it (inside-out): its children
-//! first, then its clean-up paths and the loops around its islands, nearest first, and its
-//! outer loop last, or first where it is the nearest (a ring's levels: the outer loop beside
-//! the one just cut, not the far side of the ring there and back). Once
+//! first, then its clean-up paths and the loops around its islands, along a short tour where
+//! they are few (else nearest first), and its outer loop last, or first where it is the
+//! nearest (a ring's levels: the outer loop beside the one just cut, not the far side of the
+//! ring there and back). Once
 //! a part's children are cut, the tool may move at depth anywhere that stays inside the part
 //! (every point at least the part's distance from the walls): such a move crosses only the
 //! band the part's own loops are about to clear. Other moves retract to the safe height and
@@ -19,9 +22,11 @@
 
 mod detour;
 mod entry;
+mod ladder;
 mod lead;
 mod order;
 mod route;
+mod schedule;
 mod walk;
 
 pub use detour::detour;
@@ -33,6 +38,7 @@ use crate::geom::PreparedPocket;
 use crate::geom::{bbox_of, Aabb, BoxIndex, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
+use ladder::Ladder;
 use std::cell::OnceCell;
 
 /// Longest move at depth through uncut stock from one branch to the next, in tool radii: a
@@ -47,13 +53,6 @@ const HELIX_NEAR_RADII: [f64; 2] = [2.0, 10.0];
 /// [`Linker::detour_within`]); beyond, through the pocket's index.
 const MAX_LOCAL_WALLS: usize = 256;
 
-/// How many of the nearest branches not cut yet are tried for a slot from where the tool is.
-const SLOT_CANDIDATES: usize = 4;
-
-/// Most parts to enter that the choice of the next is made by a tour over (see
-/// [`Linker::to_enter`]); beyond it, the nearest.
-const MAX_TOURED_ENTRIES: usize = 200;
-
 /// Most paths of a part that the choice of the next is made by a tour over (see
 /// [`next_item`]); beyond it, the nearest.
 const MAX_TOURED_ITEMS: usize = 32;
@@ -61,13 +60,6 @@ const MAX_TOURED_ITEMS: usize = 32;
 /// Spacing of the lattice a way round what is in the way is searched on, in tool radii: fine
 /// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
 const DETOUR_STEP_RADII: f64 = 0.25;
-
-/// The least distance between the levels of a plain leaf of nested loops (see
-/// [`Linker::chain`]), in tool radii: 0.8, a stepover of 40 % of the diameter. Measured on the
-/// linking bench, such leaves cut from their surroundings at any stepover raised the 30 %
-/// rectangle's p95 engagement from 144° to 180° (its share above 150° 4.6 -> 9.0 %) for
-/// 53 s; at 40 % and more the p95 was 180° before on every drawing.
-const CHAIN_MIN_STEP_RADII: f64 = 0.8;
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
 ///
@@ -351,252 +343,6 @@ impl<'a> Linker<'a> {
         self.path.position().xy()
     }
 
-    /// Cuts the part `n` and everything inside it, each part after the parts inside it that
-    /// it waits for (see [`Linker::visit`]). A part whose children are all cut is ready,
-    /// wherever it is in the tree, and the ready parts of every branch are one pool: of them,
-    /// the nearest that needs no entry goes next (one with a child cut, reached at depth, or
-    /// of the nearest few, one a slot reaches from where the tool is); when none does, small
-    /// leaves whose parent has a child cut wait for it (they are cut from the stock it cleared,
-    /// without entries of their own); else the nearest ready part is entered, a small leaf
-    /// only when nothing else is ready. A branch is not finished before the tool goes on to a
-    /// nearer one: on the 30 % rectangle, finishing each first sent the tool from one side to
-    /// the other and back three times, 80 to 150 mm each.
-    fn cut(&mut self, n: usize) {
-        self.cut_early.clear();
-        self.enclosed.clear();
-        let plan = self.plan();
-        // Every part to cut, by part: what it waits for and what it cuts after and on its way;
-        // and the part waiting for it.
-        let mut visits: Vec<Option<Visit>> = Vec::new();
-        visits.resize_with(plan.parts.len(), || None);
-        let mut waiting_for = vec![usize::MAX; plan.parts.len()];
-        let (mut ready, mut stack) = (Vec::new(), vec![n]);
-        while let Some(m) = stack.pop() {
-            let visit = self.visit(m);
-            for &c in &visit.before {
-                waiting_for[c] = m;
-                stack.push(c);
-            }
-            if visit.before.is_empty() {
-                ready.push(m);
-            }
-            visits[m] = Some(visit);
-        }
-        loop {
-            let mut pick = self.without_entry(&ready, &visits);
-            if pick.is_none() && defer_small_leaves(self, &mut visits, &mut ready) {
-                pick = self.without_entry(&ready, &visits);
-            }
-            let Some(k) = pick.or_else(|| self.to_enter(&ready, &visits)) else {
-                break;
-            };
-            let m = ready.swap_remove(k);
-            let Some(Visit {
-                part,
-                mut after,
-                along,
-                cut_any,
-                ..
-            }) = visits[m].take()
-            else {
-                unreachable!("a ready part has its visit")
-            };
-            let children = &plan.parts[part].children;
-            let cut: Vec<usize> = (children.iter().copied())
-                .filter(|c| !after.contains(c) && !along.contains(c))
-                .collect();
-            let reach = Reach {
-                distance: plan.parts[part].distance,
-                cut: &cut,
-            };
-            after.extend(self.cut_part(part, !cut_any, reach, &along));
-            self.cut_small_leaves(part, after);
-            if let Some(parent) = visits.get_mut(waiting_for[m]).and_then(Option::as_mut) {
-                parent.before.retain(|&c| c != m);
-                parent.cut_any = true;
-                if parent.before.is_empty() {
-                    ready.push(parent.part);
-                }
-            }
-        }
-    }
-
-    /// Which of the `ready` parts to cut next without a new entry: the nearest (to its box)
-    /// of those with a child cut, reached at depth, and those of the nearest few a slot reaches
-    /// from where the tool is; none when there is no such part.
-    fn without_entry(&self, ready: &[usize], visits: &[Option<Visit>]) -> Option<usize> {
-        let here = self.here();
-        let to_box = |m: usize| self.boxes[m].distance_sq(here).sqrt();
-        let parents = (0..ready.len()).filter(|&k| visits[ready[k]].as_ref().is_some_and(|v| v.cut_any));
-        let fresh: Vec<usize> = (0..ready.len())
-            .filter(|&k| visits[ready[k]].as_ref().is_some_and(|v| !v.cut_any))
-            .map(|k| ready[k])
-            .collect();
-        let slotted = self
-            .next_child(&fresh)
-            .and_then(|f| ready.iter().position(|&m| m == fresh[f]));
-        parents
-            .chain(slotted)
-            .min_by(|&a, &b| to_box(ready[a]).total_cmp(&to_box(ready[b])).then(a.cmp(&b)))
-    }
-
-    /// Which of the `ready` parts to enter: the nearest (to its box), but for small leaves
-    /// whose parent waits for a part that is not one (once that is cut, they wait for their
-    /// parent instead of being entered), which go only when nothing else is ready; none when
-    /// none is ready.
-    fn to_enter(&self, ready: &[usize], visits: &[Option<Visit>]) -> Option<usize> {
-        let here = self.here();
-        let may_wait = |m: usize| {
-            self.is_small_leaf(m)
-                && (self.plan().parts[m].parent)
-                    .and_then(|p| visits[p].as_ref())
-                    .is_some_and(|v| v.before.iter().any(|&c| !self.is_small_leaf(c)))
-        };
-        let waits: Vec<bool> = ready.iter().map(|&m| may_wait(m)).collect();
-        let all_wait = waits.iter().all(|&w| w);
-        let candidates: Vec<usize> = (0..ready.len()).filter(|&k| all_wait || !waits[k]).collect();
-        if candidates.len() > MAX_TOURED_ENTRIES {
-            let to_box = |k: usize| self.boxes[ready[k]].distance_sq(here);
-            return candidates
-                .into_iter()
-                .min_by(|&x, &y| to_box(x).total_cmp(&to_box(y)).then(x.cmp(&y)));
-        }
-        // The first of a short tour over them, not merely the nearest: the nearest leaves
-        // the far ones for a long way back at the end.
-        let places: Vec<Point> = (candidates.iter())
-            .map(|&k| {
-                let b = self.boxes[ready[k]];
-                b.min.midpoint(b.max)
-            })
-            .collect();
-        tour(&places, here).first().map(|&i| candidates[i])
-    }
-
-    /// The visit of part `n`: its children to cut before it, less the leaves it cuts on its
-    /// way (see [`Linker::is_plain_leaf`]) when it has several children (a part with one
-    /// child gains nothing: that child is reached without a link either way).
-    fn visit(&self, n: usize) -> Visit {
-        let (plan, part) = (self.plan(), &self.plan().parts[n]);
-        let children = &part.children;
-        // A finishing loop has leads, not excursions.
-        let leads = part.level == 0 && plan.allowance > 0.0;
-        let (along, before) = if children.len() > 1 && !leads {
-            children.iter().partition(|&&c| self.is_plain_leaf(c))
-        } else {
-            (Vec::new(), children.clone())
-        };
-        Visit {
-            part: n,
-            before,
-            after: Vec::new(),
-            along,
-            cut_any: false,
-        }
-    }
-
-    /// True when the part `n` is a leaf its loop alone clears (nothing inside it, no island,
-    /// no clean-up path), or one of nested loops (below): such a leaf is cut after the loops
-    /// of its parent around it, from the last of them (see [`Linker::cut_part`]), instead of
-    /// before them, reached by a slot or an entry of its own. Its loop then cuts what its parent's loops left of it, where
-    /// before them it cut a slot in full stock; the price is that the parent's paths beside
-    /// it cut the width the leaf's loop would have cleared for them, full width. Measured on
-    /// the linking bench: the same p95 engagement on every drawing, a larger share of the
-    /// cutting above 150° on some (the 300-hole plate's 16.8 % -> 23.4 %, still below
-    /// FreeCAD's 25.9 %), and the plate 205 s faster (its slots between the diamonds between
-    /// four holes were 4 m).
-    ///
-    /// A part whose only child is such a leaf, or such a part, and so on inwards, is cut the
-    /// same way, its loops one after the other from the outermost (see [`Linker::chain`]);
-    /// one with clean-up paths right after its parent (see [`Linker::cut_small_leaves`]).
-    fn is_plain_leaf(&self, n: usize) -> bool {
-        self.plan().parts[n].parent.is_some() && self.chain(n).is_some()
-    }
-
-    /// The part `n` and the parts nested in it, outermost first, when none has an island and
-    /// all but the last exactly one child (the last none): what its loops, cut from the
-    /// outermost inwards, and its clean-up paths clear. Of more than one loop only when they
-    /// are at least [`CHAIN_MIN_STEP_RADII`] tool radii apart: the paths of the parent beside
-    /// such a leaf, cut before it, cut full width what its loops would have cleared, and a
-    /// small stepover is chosen for light cuts.
-    fn chain(&self, n: usize) -> Option<Vec<usize>> {
-        let plan = self.plan();
-        let parts = &plan.parts;
-        let mut chain = vec![n];
-        loop {
-            let part = &parts[chain[chain.len() - 1]];
-            if !part.holes.is_empty() {
-                return None;
-            }
-            match part.children[..] {
-                [] => return Some(chain),
-                [c] if parts[c].distance - part.distance + self.tol.eps
-                    >= CHAIN_MIN_STEP_RADII * plan.tool_radius =>
-                {
-                    chain.push(c)
-                }
-                _ => return None,
-            }
-        }
-    }
-
-    /// Which of `children` (not cut yet) to cut next without an entry: of the nearest few,
-    /// the nearest a slot reaches from where the tool is; none when no slot reaches them.
-    fn next_child(&self, children: &[usize]) -> Option<usize> {
-        if !self.down {
-            return None;
-        }
-        let here = self.here();
-        let mut by_distance: Vec<(f64, usize)> = (children.iter().enumerate())
-            .map(|(k, &c)| {
-                let b = self.boxes[c];
-                (b.min.midpoint(b.max).distance(here), k)
-            })
-            .collect();
-        // Only the nearest few are tried: those picked out, then put in order (a plate's part
-        // has a child round every hole, and this is asked once for each).
-        let order = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
-        if by_distance.len() > SLOT_CANDIDATES {
-            by_distance.select_nth_unstable_by(SLOT_CANDIDATES - 1, order);
-            by_distance.truncate(SLOT_CANDIDATES);
-        }
-        by_distance.sort_unstable_by(order);
-        (by_distance.iter())
-            .find(|&&(_, k)| self.slot_to(children[k]).is_some())
-            .map(|&(_, k)| k)
-    }
-
-    /// The slot that would reach the part `n`, not cut yet, from where the tool is (see
-    /// [`Linker::slot_link`]); none when the tool is not down.
-    fn slot_to(&self, n: usize) -> Option<Vec<Point>> {
-        if !self.down {
-            return None;
-        }
-        let part = &self.plan().parts[n];
-        let reverse = self.params.direction == Direction::Conventional;
-        let walk = walk::walk_from(
-            &loop_path(&part.outer.segments),
-            self.here(),
-            reverse,
-            self.tol.eps,
-        );
-        self.slot_link(part, walk.first()?.start())
-    }
-
-    /// True when the part `n` is a small leaf: nothing inside it, no island, and its loop
-    /// within a square of the tool's diameter, so that every point inside the loop is within
-    /// the tool radius of it: the loop alone clears what its parent leaves there.
-    fn is_small_leaf(&self, n: usize) -> bool {
-        let plan = self.plan();
-        let part = &plan.parts[n];
-        let b = self.boxes[n];
-        let d = 2.0 * plan.tool_radius;
-        part.parent.is_some()
-            && part.children.is_empty()
-            && part.holes.is_empty()
-            && b.max.x - b.min.x <= d
-            && b.max.y - b.min.y <= d
-    }
-
     /// Cuts the small leaves of `parent`, just cut, and its plain leaves not cut on the way
     /// round its paths, nearest first: each reached at depth through the parent's region
     /// (cleared but for the leaves' own remains).
@@ -724,215 +470,6 @@ impl<'a> Linker<'a> {
             self.leave_ladder(l, None, reach.distance);
         }
         leaves.left
-    }
-
-    /// The loop round islands of the parent of part `n` that `n`'s loop round islands `j`
-    /// encloses, when it encloses one only: that loop lies between the islands and `n`'s, and
-    /// is cut right after it (see [`Linker::cut_enclosed_holes`]). None when the parent has
-    /// clean-up paths (they are cut on the way round its loops) or a finishing loop with
-    /// leads, and for a loop round many islands (the merged loop round a grid of them), whose
-    /// islands' loops the parent links nearest first.
-    fn enclosed_hole(&mut self, n: usize, j: usize) -> Option<usize> {
-        let plan = self.plan();
-        let found = self.enclosed.entry(n).or_insert_with(|| {
-            let part = &plan.parts[n];
-            let mut found = vec![None; part.holes.len()];
-            let Some(parent) = part.parent.map(|p| &plan.parts[p]) else {
-                return found;
-            };
-            if parent.holes.is_empty() || !parent.cleanups.is_empty() || plan.allowance > 0.0 {
-                return found;
-            }
-            let boxes: Vec<Aabb> = parent.holes.iter().map(|h| h.bbox()).collect();
-            let index = BoxIndex::new(&boxes);
-            for (i, h) in part.holes.iter().enumerate() {
-                let b = h.bbox();
-                let inside: Vec<usize> = index
-                    .intersecting(&b)
-                    .filter(|&k| {
-                        b.contains_box(&boxes[k])
-                            && (parent.holes[k].segments.first())
-                                .is_some_and(|s| h.winding_number(s.start()) != 0)
-                    })
-                    .collect();
-                if let [k] = inside[..] {
-                    found[i] = Some(k);
-                }
-            }
-            found
-        });
-        found.get(j).copied().flatten()
-    }
-
-    /// After the loop round islands `j` of part `n`: the loops round the same islands in the
-    /// parts around `n`, each enclosing the next, cut one after the other towards the islands
-    /// from where the tool is, instead of each with its own part, reached by a link of its
-    /// own (on the 300-hole plate the loops round the holes at two levels were two chains of
-    /// 300 links). The tool is left on the innermost of them, and the way back out is chosen
-    /// with the next path (see [`Linker::leave_ladder`]). Cutting them early changes nothing
-    /// they cut: a loop's tool disc reaches no farther from its islands than the loop it
-    /// follows plus the radius, where everything the other loops of that loop's part could
-    /// clear is farther out.
-    fn cut_enclosed_holes(&mut self, n: usize, j: usize) -> Option<Ladder> {
-        let (back_to, outer) = (self.here(), self.last.clone());
-        let (mut at, mut hole, mut nearest_walls) = (n, j, None);
-        while let (Some(parent), Some(h)) = (self.plan().parts[at].parent, self.enclosed_hole(at, hole)) {
-            if !self.cut_early.insert((parent, h)) {
-                break;
-            }
-            let part = &self.plan().parts[parent];
-            let reach = Reach {
-                distance: part.distance,
-                cut: &[],
-            };
-            self.cut_path(parent, &loop_path(&part.holes[h].segments), false, reach);
-            (at, hole, nearest_walls) = (parent, h, Some(part.distance));
-        }
-        Some(Ladder {
-            back_to,
-            outer,
-            inner_distance: nearest_walls?,
-        })
-    }
-
-    /// Back out from the innermost of the loops round one island (see
-    /// [`Linker::cut_enclosed_holes`]) towards `next`, the path cut next (at `distance` from
-    /// the walls, as the outermost loop): along the innermost loop to its point nearest where
-    /// the way along the outermost would leave it for `next`, then straight out to that point,
-    /// when that is shorter than straight out to the outermost loop's end and along it (the
-    /// innermost is the shortest of them: on the 300-hole plate, 7 mm round the holes where
-    /// the outermost is 9.4 mm). Else, and when `next` is none or is reached straight from the
-    /// outermost loop's end, straight back to that end: the links onward are then the same as
-    /// without the loops cut on the way.
-    fn leave_ladder(&mut self, ladder: Ladder, next: Option<&Path>, distance: f64) {
-        if !self.down {
-            return;
-        }
-        let Ladder {
-            back_to,
-            outer,
-            inner_distance,
-        } = ladder;
-        let here = self.here();
-        let way_out = next.and_then(|next| self.way_out(&outer, back_to, next, distance, inner_distance));
-        match way_out {
-            Some(WayOut {
-                moves,
-                to,
-                onto_outer,
-            }) => {
-                walk::follow(&mut self.path, &moves, self.z);
-                self.path.line(Point3::at(to, self.z), Feed::Cut);
-                self.last = if onto_outer {
-                    // The outermost loop walked from there: the tool is at its end again.
-                    (
-                        walk::walk_from(&loop_path(&outer.0), to, false, self.tol.eps),
-                        true,
-                    )
-                } else {
-                    // On the next path: no way along a path is needed to reach it.
-                    (Vec::new(), false)
-                };
-            }
-            None if self.stays_inside(here, back_to, inner_distance) => {
-                self.path.line(Point3::at(back_to, self.z), Feed::Cut);
-                self.last = outer;
-            }
-            None => {}
-        }
-    }
-
-    /// The way out of [`Linker::leave_ladder`] along the innermost loop (the walk just cut,
-    /// the tool at its end): its moves and the point of the outermost loop (walked as `outer`,
-    /// to `back_to`) it goes out to, when shorter than going out to `back_to` and along the
-    /// outermost, and faster than going over the top.
-    fn way_out(
-        &self,
-        outer: &(Vec<Segment>, bool),
-        back_to: Point,
-        next: &Path,
-        distance: f64,
-        inner_distance: f64,
-    ) -> Option<WayOut> {
-        let (here, eps) = (self.here(), self.tol.eps);
-        let reverse = self.params.direction == Direction::Conventional;
-        let q = walk::walk_from(next, back_to, reverse, eps)[0].start();
-        if !outer.1 || self.stays_inside(back_to, q, distance) {
-            return None;
-        }
-        let (along_outer, b) = route::along_last(&outer.0, true, next, eps, |a, b| {
-            self.stays_inside(a, b, distance)
-        })?;
-        let out = along_outer.last().map_or(back_to, Segment::end);
-        let inner = &self.last.0;
-        if !self.last.1 || inner.is_empty() {
-            return None;
-        }
-        let (k, at, _) = nearest_on(inner, out);
-        let along_inner = route::back_along(inner, true, k, at, eps);
-        let a = along_inner.last().map_or(here, Segment::end);
-        let inner_length = walk::length(&along_inner) + a.distance(out);
-        let outer_length = here.distance(back_to) + walk::length(&along_outer);
-        let t = &self.params.time;
-        let faster_than_a_hop = t.feed_seconds(inner_length + out.distance(b), t.feed)
-            < self.hop_seconds(back_to.distance(q), self.z);
-        if !(inner_length < outer_length && faster_than_a_hop && self.stays_inside(a, out, inner_distance)) {
-            return None;
-        }
-        let straight_on = self
-            .straight_out(&along_inner, &outer.0, b, distance, inner_distance)
-            .filter(|moves| {
-                let p = moves.last().map_or(here, Segment::end);
-                walk::length(moves) + p.distance(b) < inner_length + out.distance(b)
-            });
-        Some(match straight_on {
-            Some(moves) => WayOut {
-                moves,
-                to: b,
-                onto_outer: false,
-            },
-            None => WayOut {
-                moves: along_inner,
-                to: out,
-                onto_outer: true,
-            },
-        })
-    }
-
-    /// The way out of the loops round one island (see [`Linker::way_out`]) straight to `b`,
-    /// the next path's point, from the earliest point of `along_inner` (the way along the
-    /// innermost loop, at `inner_distance` from the walls) it can go from: the moves along it
-    /// to there. Only where the outermost of the loops, `outer`, is convex (round a convex
-    /// island): the move then crosses it once, everything between it and the innermost is
-    /// cut, and beyond it the move keeps `distance` from the walls, as every link of the
-    /// part does. On the 300-hole plate this cuts the corner the way out along the innermost
-    /// loop and straight out to the outermost used to turn.
-    fn straight_out(
-        &self,
-        along_inner: &[Segment],
-        outer: &[Segment],
-        b: Point,
-        distance: f64,
-        inner_distance: f64,
-    ) -> Option<Vec<Segment>> {
-        let eps = self.tol.eps;
-        if along_inner.is_empty() || !crate::geom::is_convex(outer, 1e-9) {
-            return None;
-        }
-        // The earliest point is where the move grazes the island: a margin keeps it off.
-        let inner = inner_distance + clearance_slack(inner_distance, self.tol);
-        route::leave_early(along_inner, 0.01, |p| {
-            let across = Segment::Line(crate::geom::Line::new(p, b));
-            // Where the move crosses the outermost loop, nearest `b` (once only, as it is convex).
-            let crossing = (outer.iter())
-                .flat_map(|o| crate::geom::intersect(&across, o, eps).iter().collect::<Vec<_>>())
-                .filter_map(|i| match i {
-                    crate::geom::Intersection::Point { point, ta, .. } => Some((ta, point)),
-                    _ => None,
-                })
-                .max_by(|x, y| x.0.total_cmp(&y.0));
-            crossing.is_some_and(|(_, c)| self.stays_inside(p, c, inner) && self.stays_inside(c, b, distance))
-        })
     }
 
     /// The loop (0: `outer`, k: the k-th of `holes`) that cuts the clean-up path `c` on its
@@ -1529,17 +1066,6 @@ impl<'a> Linker<'a> {
     }
 }
 
-/// A part being cut: the children still to cut before it, the small leaves to cut after it,
-/// the leaves to cut on the way round its loops, and whether any child is cut (if none, its
-/// first path is an entry).
-struct Visit {
-    part: usize,
-    before: Vec<usize>,
-    after: Vec<usize>,
-    along: Vec<usize>,
-    cut_any: bool,
-}
-
 /// The leaves a part cuts on the way round its paths (see [`Linker::cut_part`]): for each
 /// path (the outer loop 0, then the items), the leaves whose loop comes within a tool
 /// diameter of it, and for each leaf how many such paths are still to cut.
@@ -1744,18 +1270,6 @@ enum Excursion {
     Leaf(usize, Vec<Path>, Point),
 }
 
-/// Where the tool is left by [`Linker::cut_enclosed_holes`]: on the innermost of the loops round
-/// one island, at the end of its walk (the walk just cut).
-struct Ladder {
-    /// The end of the walk of the outermost of those loops, from where the way onward is
-    /// measured.
-    back_to: Point,
-    /// That walk, and whether it is closed.
-    outer: (Vec<Segment>, bool),
-    /// The innermost loop's distance from the walls.
-    inner_distance: f64,
-}
-
 /// Which of a part's paths `items` (with their `boxes`) to cut next from `here`: the first of
 /// a short tour over them (nearest neighbour and 2-opt over the middles of their boxes), where
 /// they are few; else the nearest. The nearest alone leaves the far ones for a long way back
@@ -1771,34 +1285,6 @@ fn next_item(items: &[(Path, Vec<Excursion>)], boxes: &[Aabb], here: Point) -> u
     }
     let places: Vec<Point> = boxes.iter().map(|b| b.min.midpoint(b.max)).collect();
     tour(&places, here).first().copied().unwrap_or(0)
-}
-
-/// Where no ready part is reached without an entry: the parts with a child cut that wait
-/// only for small leaves stop waiting for them (the leaves are cut after them, from the stock
-/// they clear, see [`Linker::cut_small_leaves`]) and are ready. True when any part is.
-fn defer_small_leaves(linker: &Linker, visits: &mut [Option<Visit>], ready: &mut Vec<usize>) -> bool {
-    let mut any = false;
-    for (m, visit) in visits.iter_mut().enumerate() {
-        let Some(v) = visit.as_mut() else { continue };
-        if v.cut_any && !v.before.is_empty() && v.before.iter().all(|&c| linker.is_small_leaf(c)) {
-            ready.retain(|c| !v.before.contains(c));
-            let mut leaves = std::mem::take(&mut v.before);
-            v.after.append(&mut leaves);
-            ready.push(m);
-            any = true;
-        }
-    }
-    any
-}
-
-/// The way out of the loops round one island (see [`Linker::leave_ladder`]).
-struct WayOut {
-    /// The moves along the innermost loop.
-    moves: Vec<Segment>,
-    /// Where the tool then goes straight: a point of the outermost loop, or of the next path.
-    to: Point,
-    /// Whether `to` is on the outermost loop.
-    onto_outer: bool,
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
