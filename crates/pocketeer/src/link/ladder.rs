@@ -203,16 +203,28 @@ impl<'a> Linker<'a> {
         }
         // The earliest point is where the move grazes the island: a margin keeps it off.
         let inner = inner_distance + clearance_slack(inner_distance, self.tol);
-        route::leave_early(along_inner, 0.01, |p| {
+        // Before the point where the move to `b` is tangent to the innermost loop (convex,
+        // round a convex island) it would cut into the island: ruled out without measuring.
+        let middle = crate::geom::bbox_of(along_inner);
+        let middle = middle.min.midpoint(middle.max);
+        let faces_b = |p: Point, t: crate::geom::Vector| {
+            let n = t.perp();
+            let outward = if (middle - p).dot(n) > 0.0 { -n } else { n };
+            (b - p).dot(outward) >= 0.0
+        };
+        route::leave_early_hinted(along_inner, 0.01, faces_b, |p| {
             let across = Segment::Line(crate::geom::Line::new(p, b));
             // Where the move crosses the outermost loop, nearest `b` (once only, as it is convex).
-            let crossing = (outer.iter())
-                .flat_map(|o| crate::geom::intersect(&across, o, eps).iter().collect::<Vec<_>>())
-                .filter_map(|i| match i {
-                    crate::geom::Intersection::Point { point, ta, .. } => Some((ta, point)),
-                    _ => None,
-                })
-                .max_by(|x, y| x.0.total_cmp(&y.0));
+            let mut crossing: Option<(f64, Point)> = None;
+            for o in outer {
+                for i in crate::geom::intersect(&across, o, eps).iter() {
+                    if let crate::geom::Intersection::Point { point, ta, .. } = i {
+                        if crossing.is_none_or(|(t, _)| ta > t) {
+                            crossing = Some((ta, point));
+                        }
+                    }
+                }
+            }
             crossing.is_some_and(|(_, c)| self.stays_inside(p, c, inner) && self.stays_inside(c, b, distance))
         })
     }

@@ -3,7 +3,7 @@
 //! the tool is would come too near a wall.
 
 use crate::clear::Path;
-use crate::geom::{closest_param, segment_distance, Line, Point, Segment};
+use crate::geom::{closest_param, segment_distance, Line, Point, Segment, Vector};
 
 /// Most pairs of segments measured when looking for the way across (beyond it the linker
 /// retracts instead: two loops of a thousand pieces each).
@@ -121,31 +121,82 @@ pub fn leave_early(
     resolution: f64,
     may_leave: impl Fn(Point) -> bool,
 ) -> Option<Vec<Segment>> {
+    leave_early_hinted(walk, resolution, |_, _| true, may_leave)
+}
+
+/// [`leave_early`] where `may_leave` is dear to ask and `hint(p, tangent)` cheaply rules out
+/// points of the walk the tool surely may not leave from (those of a convex loop before the
+/// point where the way on is tangent to it): halving on the hint first, then `may_leave`
+/// asked there and a little past it, and halving on it only between.
+pub fn leave_early_hinted(
+    walk: &[Segment],
+    resolution: f64,
+    hint: impl Fn(Point, Vector) -> bool,
+    may_leave: impl Fn(Point) -> bool,
+) -> Option<Vec<Segment>> {
     let total: f64 = walk.iter().map(Segment::length).sum();
     let end = walk.last().map_or(Point::new(f64::NAN, f64::NAN), Segment::end);
     if walk.is_empty() || !may_leave(end) {
         return None;
     }
-    let start = walk[0].start();
-    if may_leave(start) {
-        return Some(Vec::new());
-    }
-    // `lo` a length the tool may not leave at, `hi` one it may.
-    let (mut lo, mut hi) = (0.0, total);
+    let at = |s: f64| along(walk, s);
+    let hinted = |s: f64| {
+        let (p, t) = at(s);
+        hint(p, t)
+    };
+    let allowed = |s: f64| may_leave(at(s).0);
+    // The earliest length the hint allows, and the earliest `may_leave` does.
+    let from = if hinted(0.0) {
+        0.0
+    } else if hinted(total) {
+        earliest(0.0, total, resolution, hinted)
+    } else {
+        total
+    };
+    let s = if allowed(from) {
+        from
+    } else {
+        let past = (from + 8.0 * resolution).min(total);
+        let hi = if allowed(past) { past } else { total };
+        earliest(from, hi, resolution, allowed)
+    };
+    Some(beginning(walk, s))
+}
+
+/// The least length in (`lo`, `hi`] at which `ok` holds, to within `resolution`, by halving:
+/// `ok(hi)` holds, `ok(lo)` does not.
+fn earliest(mut lo: f64, mut hi: f64, resolution: f64, ok: impl Fn(f64) -> bool) -> f64 {
     while hi - lo > resolution {
         let mid = 0.5 * (lo + hi);
-        if may_leave(point_along(walk, mid)) {
+        if ok(mid) {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    Some(beginning(walk, hi))
+    hi
 }
 
-/// The point `s` along `walk` from its start (its end beyond its length).
-fn point_along(walk: &[Segment], s: f64) -> Point {
-    beginning(walk, s).last().map_or(walk[0].start(), Segment::end)
+/// The point `s` along `walk` from its start (its end beyond its length) and the direction
+/// of travel there.
+fn along(walk: &[Segment], s: f64) -> (Point, Vector) {
+    let mut before = 0.0;
+    for seg in walk {
+        let l = seg.length();
+        if before + l >= s {
+            let t = if l > 0.0 {
+                ((s - before) / l).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            return (seg.point_at(t), seg.tangent_at(t));
+        }
+        before += l;
+    }
+    match walk.last() {
+        Some(m) => (m.end(), m.tangent_at(1.0)),
+        None => (Point::new(f64::NAN, f64::NAN), Vector::new(0.0, 0.0)),
+    }
 }
 
 /// The moves of `walk` from its start to `s` along it.
