@@ -133,6 +133,34 @@ fn bar_island_splits_the_pocket_and_both_sides_are_cleared() {
     assert_clean(&o, 6.0);
 }
 
+#[test]
+fn a_leaf_wrapping_round_an_island_is_stepped_into_round_the_island_not_across_it() {
+    // Found by `random_pockets_are_cleared_cleanly`: the loop of one level wraps round the
+    // island and its inner loop lies in the corner beyond it; the step in from where that
+    // loop began crossed the island, a gouge of 1.5 mm. Now along the loop first.
+    let d = 7.84253889017074;
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 38.31872983768194, 43.02310806421963),
+        islands: vec![circle_cw(
+            16.360855638595204,
+            18.988484523185956,
+            6.0116662659293185,
+        )],
+    };
+    // The stepover it was found at, and some about it (the tree changes with it).
+    for percent in [41.08729799548897, 36.0, 39.0, 43.0, 46.0] {
+        let o = run(
+            std::slice::from_ref(&pocket),
+            d,
+            d * percent / 100.0,
+            1.0,
+            Entry::Helix,
+            Dialect::Grbl,
+        );
+        assert_clean(&o, 1.0);
+    }
+}
+
 mod random {
     use super::*;
     use proptest::prelude::*;

@@ -162,7 +162,7 @@ impl<'a> Linker<'a> {
             return None;
         }
         let straight_on = self
-            .straight_out(&along_inner, &outer.0, b, distance, inner_distance)
+            .straight_out(&along_inner, inner, &outer.0, b, (distance, inner_distance))
             .filter(|moves| {
                 let p = moves.last().map_or(here, Segment::end);
                 walk::length(moves) + p.distance(b) < inner_length + out.distance(b)
@@ -183,7 +183,7 @@ impl<'a> Linker<'a> {
 
     /// The way out of the loops round one island (see [`Linker::way_out`]) straight to `b`,
     /// the next path's point, from the earliest point of `along_inner` (the way along the
-    /// innermost loop, at `inner_distance` from the walls) it can go from: the moves along it
+    /// innermost loop `inner_loop`, at `inner_distance` from the walls) it can go from: the moves along it
     /// to there. Only where the outermost of the loops, `outer`, is convex (round a convex
     /// island): the move then crosses it once, everything between it and the innermost is
     /// cut, and beyond it the move keeps `distance` from the walls, as every link of the
@@ -192,10 +192,10 @@ impl<'a> Linker<'a> {
     fn straight_out(
         &self,
         along_inner: &[Segment],
+        inner_loop: &[Segment],
         outer: &[Segment],
         b: Point,
-        distance: f64,
-        inner_distance: f64,
+        (distance, inner_distance): (f64, f64),
     ) -> Option<Vec<Segment>> {
         let eps = self.tol.eps;
         if along_inner.is_empty() || !crate::geom::is_convex(outer, 1e-9) {
@@ -205,7 +205,7 @@ impl<'a> Linker<'a> {
         let inner = inner_distance + clearance_slack(inner_distance, self.tol);
         // Before the point where the move to `b` is tangent to the innermost loop (convex,
         // round a convex island) it would cut into the island: ruled out without measuring.
-        let middle = crate::geom::bbox_of(along_inner);
+        let middle = crate::geom::bbox_of(inner_loop);
         let middle = middle.min.midpoint(middle.max);
         let faces_b = |p: Point, t: crate::geom::Vector| {
             let n = t.perp();
