@@ -10,8 +10,9 @@ use crate::geom::Point;
 const SLOT_CANDIDATES: usize = 4;
 
 /// Most parts to enter that the choice of the next is made by a tour over (see
-/// [`Linker::to_enter`]); beyond it, the nearest.
-const MAX_TOURED_ENTRIES: usize = 200;
+/// [`Linker::to_enter`]); beyond it, the nearest. The tour is made again at every entry, a
+/// few times the square of their number in steps.
+const MAX_TOURED_ENTRIES: usize = 64;
 
 /// The least distance between the levels of a plain leaf of nested loops (see
 /// [`Linker::chain`]), in tool radii: 0.8, a stepover of 40 % of the diameter. Measured on the
