@@ -625,29 +625,32 @@ impl<'a> Linker<'a> {
             .map(|c| {
                 let c = match c {
                     Excursion::Cleanup(c) => c,
-                    Excursion::Leaf(leaf, loops, from) => {
+                    Excursion::Leaf(leaf, chain, from) => {
                         // A leaf's loops: from the walk's point nearest to the outermost, round
                         // it from there, a step in to the next one's nearest point and round it,
                         // and so on; back by the same moves the other way.
                         let walk_index = walk_index.get_or_insert_with(|| path_index(segments));
                         let (k, p) = on_walk(segments, walk_index, *from);
                         let t = crate::geom::closest_param(&segments[k], p);
-                        let distances: Vec<f64> = (self.chain(*leaf).into_iter().flatten())
-                            .map(|n| self.plan().parts[n].distance)
-                            .collect();
-                        let mut walk = walk::walk_from(&loops[0], p, reverse, eps);
+                        let parts = &self.plan().parts;
+                        let loop_of = |c: usize| loop_path(&parts[c].outer.segments);
+                        let mut walk = walk::walk_from(&loop_of(chain[0]), p, reverse, eps);
                         let mut path = walk.clone();
-                        // The moves from the innermost loop's start back out to `p`.
-                        let mut back: Vec<Segment> = Vec::new();
-                        for (j, l) in loops[1..].iter().enumerate() {
-                            let way = self.step_in(&walk, l, distances.get(j).copied());
+                        // The steps in, each from the loop of the part before.
+                        let mut steps: Vec<Vec<Segment>> = Vec::new();
+                        for w in chain.windows(2) {
+                            let next = loop_of(w[1]);
+                            let way = self.step_in(&walk, &next, parts[w[0]].distance);
                             let at = way.last().map_or(path[path.len() - 1].end(), Segment::end);
-                            walk = walk::walk_from(l, at, reverse, eps);
-                            let reversed: Vec<Segment> = way.iter().rev().map(Segment::reversed).collect();
-                            back.splice(0..0, reversed);
-                            path.extend(way);
+                            walk = walk::walk_from(&next, at, reverse, eps);
+                            path.extend(way.iter().copied());
                             path.extend(walk.iter().copied());
+                            steps.push(way);
                         }
+                        // Back out: the steps the other way, innermost first, then to `p`.
+                        let mut back: Vec<Segment> = (steps.iter().rev())
+                            .flat_map(|way| way.iter().rev().map(Segment::reversed))
+                            .collect();
                         back.push(Segment::Line(crate::geom::Line::new(path[0].start(), p)));
                         return (k, t, path, Some((*leaf, back)));
                     }
@@ -719,16 +722,15 @@ impl<'a> Linker<'a> {
     /// `next` is reached straight (a leaf's loop can wrap round an island, its next loop lie in
     /// a corner beyond it: the straight step from the loop's start crossed the island, a gouge
     /// of 1.5 mm that the random pockets test found). The moves, ending on `next`.
-    fn step_in(&self, walk: &[Segment], next: &Path, distance: Option<f64>) -> Vec<Segment> {
+    fn step_in(&self, walk: &[Segment], next: &Path, distance: f64) -> Vec<Segment> {
         let (eps, reverse) = (self.tol.eps, self.params.direction == Direction::Conventional);
         let at = walk.last().map_or(self.here(), Segment::end);
         let q = walk::walk_from(next, at, reverse, eps)[0].start();
         let straight = vec![Segment::Line(crate::geom::Line::new(at, q))];
-        let Some(d) = distance else { return straight };
-        if self.stays_inside(at, q, d) {
+        if self.stays_inside(at, q, distance) {
             return straight;
         }
-        match route::along_last(walk, true, next, eps, |a, b| self.stays_inside(a, b, d)) {
+        match route::along_last(walk, true, next, eps, |a, b| self.stays_inside(a, b, distance)) {
             Some((mut moves, b)) => {
                 let a = moves.last().map_or(at, Segment::end);
                 moves.push(Segment::Line(crate::geom::Line::new(a, b)));
@@ -1207,8 +1209,7 @@ impl<'a> LeavesBeside<'a> {
             let cleanups = chain.iter().any(|&c| !plan.parts[c].cleanups.is_empty());
             match nearest {
                 Some((_, _, p, q)) if !cleanups && linker.stays_inside(p, q, self.part.distance) => {
-                    let loops = (chain.iter()).map(|&c| loop_path(&plan.parts[c].outer.segments));
-                    item.1.push(Excursion::Leaf(self.ids[l], loops.collect(), p));
+                    item.1.push(Excursion::Leaf(self.ids[l], chain, p));
                 }
                 _ => self.left.push(self.ids[l]),
             }
@@ -1297,9 +1298,9 @@ type Stop = (usize, f64, Vec<Segment>, Option<(usize, Vec<Segment>)>);
 enum Excursion {
     /// A clean-up path.
     Cleanup(Path),
-    /// A plain leaf (its part), its loops, outermost first (see [`Linker::is_plain_leaf`]),
+    /// A plain leaf (its part), its nested parts, outermost first (see [`Linker::chain`]),
     /// and the point of the loop it is cut from nearest to it.
-    Leaf(usize, Vec<Path>, Point),
+    Leaf(usize, Vec<usize>, Point),
 }
 
 /// Which of a part's paths `items` (with their `boxes`) to cut next from `here`: the first of

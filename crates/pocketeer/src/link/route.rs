@@ -180,8 +180,34 @@ fn earliest(mut lo: f64, mut hi: f64, resolution: f64, ok: impl Fn(f64) -> bool)
 /// The point `s` along `walk` from its start (its end beyond its length) and the direction
 /// of travel there.
 fn along(walk: &[Segment], s: f64) -> (Point, Vector) {
+    match locate(walk, s) {
+        Some((i, t)) => (walk[i].point_at(t), walk[i].tangent_at(t)),
+        None => match walk.last() {
+            Some(m) => (m.end(), m.tangent_at(1.0)),
+            None => (Point::new(f64::NAN, f64::NAN), Vector::new(0.0, 0.0)),
+        },
+    }
+}
+
+/// The moves of `walk` from its start to `s` along it.
+fn beginning(walk: &[Segment], s: f64) -> Vec<Segment> {
+    match locate(walk, s) {
+        Some((i, t)) => {
+            let mut moves = walk[..i].to_vec();
+            if t > 0.0 {
+                moves.push(walk[i].subsegment(0.0, t));
+            }
+            moves
+        }
+        None => walk.to_vec(),
+    }
+}
+
+/// Where `s` along `walk` from its start falls: the segment and the parameter on it; none
+/// beyond the walk's length.
+fn locate(walk: &[Segment], s: f64) -> Option<(usize, f64)> {
     let mut before = 0.0;
-    for seg in walk {
+    for (i, seg) in walk.iter().enumerate() {
         let l = seg.length();
         if before + l >= s {
             let t = if l > 0.0 {
@@ -189,32 +215,11 @@ fn along(walk: &[Segment], s: f64) -> (Point, Vector) {
             } else {
                 0.0
             };
-            return (seg.point_at(t), seg.tangent_at(t));
+            return Some((i, t));
         }
         before += l;
     }
-    match walk.last() {
-        Some(m) => (m.end(), m.tangent_at(1.0)),
-        None => (Point::new(f64::NAN, f64::NAN), Vector::new(0.0, 0.0)),
-    }
-}
-
-/// The moves of `walk` from its start to `s` along it.
-fn beginning(walk: &[Segment], s: f64) -> Vec<Segment> {
-    let mut moves = Vec::new();
-    let mut before = 0.0;
-    for seg in walk {
-        let l = seg.length();
-        if before + l >= s {
-            if l > 0.0 && s > before {
-                moves.push(seg.subsegment(0.0, (s - before) / l));
-            }
-            return moves;
-        }
-        moves.push(*seg);
-        before += l;
-    }
-    moves
+    None
 }
 
 #[cfg(test)]
