@@ -187,8 +187,15 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
         outputs.push(("--svg", svg.as_path()));
     }
     output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
-    let analysis = read_analysis(&args.drawing)?;
+    let mut analysis = read_analysis(&args.drawing)?;
     print_warnings(&inspect::import_warnings(&analysis));
+    if args.svg.is_none() {
+        // From here on only the pockets are read (the preview would draw the rest): the
+        // drawing's elements and their chains, two more copies of every element, go back
+        // before the offset, whose working memory is the run's peak.
+        analysis.drawing.elements = Vec::new();
+        analysis.chains = Default::default();
+    }
     let tol = &analysis.tolerance;
     let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
     let name = args.drawing.file.display();

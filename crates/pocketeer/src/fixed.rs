@@ -6,27 +6,78 @@
 //! from zero and printed as an integer: the same text except where the scaling itself rounds,
 //! which moves the last decimal by one at most.
 
-use std::fmt::Write;
+/// Text being written, held as bytes: digits are appended as a slice, where a `String` takes
+/// them one `char` at a time or checks each run of them again for UTF-8 (both were most of
+/// the time of writing a large drawing). Only whole `str`s and `char`s go in, so the bytes are
+/// always UTF-8; they are checked once, in [`Text::into_string`].
+#[derive(Debug, Default)]
+pub(crate) struct Text(Vec<u8>);
+
+impl Text {
+    /// Appends `s`.
+    pub(crate) fn push_str(&mut self, s: &str) {
+        self.0.extend_from_slice(s.as_bytes());
+    }
+
+    /// Appends `c`.
+    pub(crate) fn push(&mut self, c: char) {
+        let mut utf8 = [0; 4];
+        self.push_str(c.encode_utf8(&mut utf8));
+    }
+
+    /// The length in bytes.
+    pub(crate) fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Cuts the text back to its first `len` bytes (a length this text had before).
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.0.truncate(len);
+    }
+
+    /// Makes room for `additional` more bytes.
+    pub(crate) fn reserve(&mut self, additional: usize) {
+        self.0.reserve(additional);
+    }
+
+    /// The text as a `String`.
+    pub(crate) fn into_string(self) -> String {
+        // Cannot fail (see the type's comment); lossy rather than a panic if it ever did.
+        String::from_utf8(self.0).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+    }
+}
+
+/// 10^k for every k whose power a `u64` holds (and an `f64` holds exactly up to 10^22).
+const POWERS: [u64; 20] = {
+    let mut p = [1u64; 20];
+    let mut k = 1;
+    while k < 20 {
+        p[k] = p[k - 1] * 10;
+        k += 1;
+    }
+    p
+};
 
 /// The largest scaled value printed as an integer: above 2^53 an `f64` no longer holds every
 /// integer, and the digits would be noise.
 const LARGEST: f64 = 9.0e15;
 
 /// `v` in units of its `decimals`-th decimal, rounded half away from zero, when it fits:
-/// 1.23456 to 4 decimals is 12346; 1e300 does not fit.
+/// 1.23456 to 4 decimals is 12346; 1e300 does not fit, nor does anything to 20 decimals or more.
 pub(crate) fn quantize(v: f64, decimals: usize) -> Option<i64> {
-    let scaled = (v * 10f64.powi(decimals as i32)).round();
+    let scaled = (v * *POWERS.get(decimals)? as f64).round();
     (scaled.abs() < LARGEST).then_some(scaled as i64)
 }
 
 /// Appends `n`, in units of the `decimals`-th decimal, with exactly `decimals` decimals (a
-/// zero is never signed: `-0.0000` would be a negative zero to a reader).
-pub(crate) fn push_fixed(out: &mut String, n: i64, decimals: usize) {
+/// zero is never signed: `-0.0000` would be a negative zero to a reader). `n` is a value
+/// [`quantize`] gave, so `decimals` is below 20.
+pub(crate) fn push_fixed(out: &mut Text, n: i64, decimals: usize) {
     if n < 0 {
         out.push('-');
     }
     let a = n.unsigned_abs();
-    let unit = 10u64.pow(decimals as u32);
+    let unit = POWERS.get(decimals).copied().unwrap_or(u64::MAX);
     push_digits(out, a / unit, 1);
     if decimals > 0 {
         out.push('.');
@@ -36,20 +87,18 @@ pub(crate) fn push_fixed(out: &mut String, n: i64, decimals: usize) {
 
 /// Appends `v` with exactly `decimals` decimals, rounded half away from zero; numbers too large
 /// to scale are printed exactly.
-pub(crate) fn push_number(out: &mut String, v: f64, decimals: usize) {
+pub(crate) fn push_number(out: &mut Text, v: f64, decimals: usize) {
     match quantize(v, decimals) {
         Some(n) => push_fixed(out, n, decimals),
-        None => {
-            let _ = write!(out, "{v:.decimals$}");
-        }
+        None => out.push_str(&format!("{v:.decimals$}")),
     }
 }
 
 /// `v` with exactly `decimals` decimals (see [`push_number`]).
 pub(crate) fn fixed(v: f64, decimals: usize) -> String {
-    let mut out = String::new();
+    let mut out = Text::default();
     push_number(&mut out, v, decimals);
-    out
+    out.into_string()
 }
 
 /// The two digits of every number below 100, side by side.
@@ -62,7 +111,7 @@ const PAIRS: &[u8; 200] = b"\
 
 /// Appends the decimal digits of `n`, padded with zeros to at least `width` digits (20 at
 /// most, the digits of `u64::MAX`). Two digits a division: a drawing's text is mostly digits.
-pub(crate) fn push_digits(out: &mut String, mut n: u64, width: usize) {
+pub(crate) fn push_digits(out: &mut Text, mut n: u64, width: usize) {
     // u64::MAX has 20 digits.
     let mut buf = [b'0'; 20];
     let mut at = buf.len();
@@ -80,8 +129,8 @@ pub(crate) fn push_digits(out: &mut String, mut n: u64, width: usize) {
         buf[at] = b'0' + n as u8;
     }
     let start = at.min(buf.len() - width.min(buf.len()));
-    // ASCII digits, each one byte of the string (no UTF-8 check of the buffer to pass).
-    out.extend(buf[start..].iter().map(|&b| char::from(b)));
+    // ASCII digits: whole characters.
+    out.0.extend_from_slice(&buf[start..]);
 }
 
 #[cfg(test)]
@@ -102,15 +151,17 @@ mod tests {
         assert_eq!(fixed(0.5, 10), "0.5000000000");
         assert_eq!(fixed(-123456.0000000001, 10), "-123456.0000000001");
         assert_eq!(fixed(1e300, 4).len(), 306);
+        assert_eq!(fixed(0.5, 19), "0.5000000000000000000");
+        assert_eq!(fixed(0.5, 25), format!("{:.25}", 0.5));
     }
 
     proptest! {
         /// Digits as the standard library prints them, zero-padded to the width.
         #[test]
         fn digits_as_printed(n in prop_oneof![0u64..1000, any::<u64>()], width in 0usize..=20) {
-            let mut out = String::new();
+            let mut out = Text::default();
             push_digits(&mut out, n, width);
-            prop_assert_eq!(out, format!("{n:0width$}"));
+            prop_assert_eq!(out.into_string(), format!("{n:0width$}"));
         }
 
         /// The text reads back within half a last decimal (and the scaling's rounding) of the

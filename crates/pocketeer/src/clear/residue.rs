@@ -77,8 +77,8 @@ pub fn add_cleanups(
         }
         let gap = Gap {
             pocket,
-            here: SegmentIndex::new(&loops_of(k)),
-            below: SegmentIndex::new(&loops_of(k + 1)),
+            here: SegmentIndex::from_vec(loops_of(k)),
+            below: SegmentIndex::from_vec(loops_of(k + 1)),
             next_distance: nominal(k),
             radius: r,
             reach: nominal(k) - half[gi].0,

@@ -1,7 +1,7 @@
 //! A minimal DXF writer: closed contours as LWPOLYLINE entities with bulges (arcs stay exact,
 //! a full circle as two half circles), in a file any CAD program reads.
 
-use crate::fixed::{push_digits, push_number};
+use crate::fixed::{push_digits, push_number, Text};
 use crate::geom::{Contour, Segment};
 use crate::import::Units;
 
@@ -43,10 +43,10 @@ fn insunits(u: Units) -> i32 {
 /// ```
 pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     let k = 1.0 / units.mm();
-    let mut s = String::new();
+    let mut s = Text::default();
     // Group codes right-aligned in three columns, as AutoCAD writes them (by hand: the
     // formatting machinery was a tenth of writing a large drawing).
-    let code = |s: &mut String, code: u16| {
+    let code = |s: &mut Text, code: u16| {
         let digits = match code {
             0..=9 => 1,
             10..=99 => 2,
@@ -56,12 +56,12 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
         push_digits(s, u64::from(code), 1);
         s.push('\n');
     };
-    let pair = |s: &mut String, c: u16, value: &str| {
+    let pair = |s: &mut Text, c: u16, value: &str| {
         code(s, c);
         s.push_str(value);
         s.push('\n');
     };
-    let number = |s: &mut String, c: u16, v: f64, decimals: usize| {
+    let number = |s: &mut Text, c: u16, v: f64, decimals: usize| {
         code(s, c);
         push_number(s, v, decimals);
         s.push('\n');
@@ -75,28 +75,27 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     pair(&mut s, 0, "ENDSEC");
     pair(&mut s, 0, "SECTION");
     pair(&mut s, 2, "ENTITIES");
-    let mut segs = Vec::new();
     for lc in contours {
         // A bulge gives an arc's sweep as tan(sweep / 4), which a full turn has none of: a
         // circle is written as its two halves. (Not as a CIRCLE entity, which has no
         // direction: a loop round an island runs clockwise.)
-        segs.clear();
-        for seg in &lc.contour.segments {
-            match seg {
-                Segment::Arc(a) if a.is_full_circle() => segs.extend([
-                    Segment::Arc(a.subsegment(0.0, 0.5)),
-                    Segment::Arc(a.subsegment(0.5, 1.0)),
-                ]),
-                _ => segs.push(*seg),
-            }
-        }
+        let halves = |seg: &Segment| match seg {
+            Segment::Arc(a) if a.is_full_circle() => [
+                Some(Segment::Arc(a.subsegment(0.0, 0.5))),
+                Some(Segment::Arc(a.subsegment(0.5, 1.0))),
+            ],
+            _ => [Some(*seg), None],
+        };
+        let vertices = lc.contour.segments.iter().flat_map(halves).flatten();
         pair(&mut s, 0, "LWPOLYLINE");
         pair(&mut s, 100, "AcDbEntity");
         pair(&mut s, 8, lc.layer);
         pair(&mut s, 100, "AcDbPolyline");
-        pair(&mut s, 90, &segs.len().to_string());
+        pair(&mut s, 90, &vertices.clone().count().to_string());
         pair(&mut s, 70, "1");
-        for seg in &segs {
+        // About 30 bytes a coordinate: reserved once, not grown by doubling.
+        s.reserve(64 * lc.contour.segments.len());
+        for seg in vertices {
             let p = seg.start();
             number(&mut s, 10, p.x * k, 10);
             number(&mut s, 20, p.y * k, 10);
@@ -107,5 +106,5 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     }
     pair(&mut s, 0, "ENDSEC");
     pair(&mut s, 0, "EOF");
-    s
+    s.into_string()
 }

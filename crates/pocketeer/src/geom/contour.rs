@@ -328,7 +328,10 @@ pub fn winding_number(segments: &[Segment], p: Point) -> i32 {
 pub struct WindingIndex {
     y0: f64,
     dy: f64,
-    strips: Vec<Vec<u32>>,
+    /// Strip k's segments are `filed[starts[k]..starts[k + 1]]`: one list for all strips,
+    /// filled in two passes (a count, then the entries), not a growing list per strip.
+    starts: Vec<u32>,
+    filed: Vec<u32>,
     /// Each segment's box with the end of the segment before it, grown by the slack.
     boxes: Vec<Aabb>,
     /// The union of `boxes`.
@@ -340,23 +343,29 @@ impl WindingIndex {
     pub fn new(segments: &[Segment]) -> WindingIndex {
         let n = segments.len();
         // Each segment also answers for the gap from the end of the one before it.
-        let boxes: Vec<Aabb> = (0..n)
-            .map(|i| {
-                let mut b = segments[i].bbox();
-                b.add_point(segments[(i + n - 1) % n].end());
+        let mut from = segments.last().map_or(Point::new(0.0, 0.0), Segment::end);
+        let mut boxes: Vec<Aabb> = segments
+            .iter()
+            .map(|s| {
+                let mut b = s.bbox();
+                b.add_point(from);
+                from = s.end();
                 b
             })
             .collect();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         let slack = 1e-9 * all.width().max(all.height()).max(1.0);
-        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(slack)).collect();
-        let extent = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
+        for b in &mut boxes {
+            *b = b.inflated(slack);
+        }
+        let extent = all.inflated(slack);
         let height = all.height();
-        if n == 0 || height.is_nan() || height <= 0.0 {
+        if n == 0 || height.is_nan() || height <= 0.0 || n > u32::MAX as usize {
             return WindingIndex {
                 y0: 0.0,
                 dy: 1.0,
-                strips: vec![(0..n as u32).collect()],
+                starts: vec![0, n as u32],
+                filed: (0..n as u32).collect(),
                 boxes,
                 extent,
             };
@@ -364,33 +373,48 @@ impl WindingIndex {
         // As many strips as keeps the filing within a few entries per segment: long, steep
         // segments are filed in every strip they cross.
         let mut k = ((n as f64).sqrt() * 2.0).ceil().min(65536.0) as usize;
-        let span = |b: &Aabb, k: usize| {
+        // The strips each box spans, worked out as `winding` finds a point's strip.
+        let spans = |k: usize| -> (f64, Vec<(u32, u32)>) {
             let dy = height / k as f64;
-            let lo = (((b.min.y - all.min.y) / dy) as usize).min(k - 1);
-            let hi = (((b.max.y - all.min.y) / dy) as usize).min(k - 1);
-            (lo, hi)
+            let strip = |y: f64| (((y - all.min.y) / dy) as usize).min(k - 1) as u32;
+            (
+                dy,
+                boxes.iter().map(|b| (strip(b.min.y), strip(b.max.y))).collect(),
+            )
         };
+        let (mut dy, mut spanned) = spans(k);
         while k > 1
-            && boxes
+            && spanned
                 .iter()
-                .map(|b| span(b, k))
-                .map(|(lo, hi)| hi - lo + 1)
+                .map(|&(lo, hi)| (hi - lo + 1) as usize)
                 .sum::<usize>()
                 > 8 * n
         {
             k /= 2;
+            (dy, spanned) = spans(k);
         }
-        let mut strips = vec![Vec::new(); k];
-        for (i, b) in boxes.iter().enumerate() {
-            let (lo, hi) = span(b, k);
-            for strip in &mut strips[lo..=hi] {
-                strip.push(i as u32);
+        let mut starts = vec![0u32; k + 1];
+        for &(lo, hi) in &spanned {
+            for c in &mut starts[lo as usize + 1..=hi as usize + 1] {
+                *c += 1;
+            }
+        }
+        for j in 1..=k {
+            starts[j] += starts[j - 1];
+        }
+        let mut next = starts.clone();
+        let mut filed = vec![0u32; starts[k] as usize];
+        for (i, &(lo, hi)) in spanned.iter().enumerate() {
+            for at in &mut next[lo as usize..=hi as usize] {
+                filed[*at as usize] = i as u32;
+                *at += 1;
             }
         }
         WindingIndex {
             y0: all.min.y,
-            dy: height / k as f64,
-            strips,
+            dy,
+            starts,
+            filed,
             boxes,
             extent,
         }
@@ -406,10 +430,12 @@ impl WindingIndex {
     /// Winding number around `p` of the chain this index was built from.
     pub fn winding(&self, segments: &[Segment], p: Point) -> i32 {
         let s = (p.y - self.y0) / self.dy;
-        if s.is_nan() || s < 0.0 || s > self.strips.len() as f64 {
+        let strips = self.starts.len() - 1;
+        if s.is_nan() || s < 0.0 || s > strips as f64 {
             return 0;
         }
-        let strip = &self.strips[(s as usize).min(self.strips.len() - 1)];
+        let k = (s as usize).min(strips - 1);
+        let strip = &self.filed[self.starts[k] as usize..self.starts[k + 1] as usize];
         let n = segments.len();
         strip
             .iter()

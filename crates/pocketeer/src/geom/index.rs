@@ -158,7 +158,7 @@ pub fn for_each_overlapping_pair(
     };
     // The boxes in sweep order, each with its index: the sweep then reads memory in order.
     let mut sorted: Vec<([f64; 4], usize)> = boxes.iter().map(axes).zip(0..).collect();
-    sorted.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    sorted.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
     // Positions in `sorted` of the boxes the sweep line is in.
     let mut open: Vec<usize> = Vec::new();
     let mut tests: u64 = 0;
@@ -208,10 +208,15 @@ pub struct SegmentIndex {
 impl SegmentIndex {
     /// Indexes `segments`.
     pub fn new(segments: &[Segment]) -> SegmentIndex {
+        SegmentIndex::from_vec(segments.to_vec())
+    }
+
+    /// Indexes `segments`, keeping them without a copy.
+    pub fn from_vec(segments: Vec<Segment>) -> SegmentIndex {
         let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
         SegmentIndex {
             tree: PackedTree::new(&boxes),
-            segments: segments.to_vec(),
+            segments,
         }
     }
 

@@ -52,7 +52,7 @@ impl PreparedPocket {
             .filter(|&k| !finite(&winding[k].extent()))
             .collect();
         PreparedPocket {
-            walls: SegmentIndex::new(&segments),
+            walls: SegmentIndex::from_vec(segments),
             contours: loops,
             winding,
             extents: BoxIndex::new(&extents),

@@ -340,6 +340,9 @@ fn erode(
             split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
     };
+    // The raw offset is cut into `pieces`: its memory goes back before the judging and the
+    // stitching, the peak of a large offset.
+    drop(raw);
     // Canonical node ids; pieces shorter than rounding go (their ends are one node).
     let pieces: Vec<Piece> = pieces
         .into_iter()

@@ -12,7 +12,7 @@ mod grbl;
 mod linuxcnc;
 mod mach3;
 
-use crate::fixed::{fixed, push_fixed, quantize};
+use crate::fixed::{fixed, push_fixed, quantize, Text};
 use crate::geom::{Point, Vector};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{half_turns, Feed, Move, Point3, Toolpath};
@@ -295,7 +295,7 @@ pub struct ToolSection<'a> {
 pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect: Dialect) -> String {
     let post = post(dialect);
     let mut w = Writer {
-        out: String::new(),
+        out: Text::default(),
         scale: match s.units {
             ProgramUnits::Millimetres => 1.0,
             ProgramUnits::Inches => 1.0 / 25.4,
@@ -408,7 +408,7 @@ pub fn write_gcode_tools(sections: &[ToolSection], s: &ProgramSettings, dialect:
         w.motion("G0", Point3::at(park, s.safe_z), None, "");
     }
     w.line(post.end());
-    w.out
+    w.out.into_string()
 }
 
 /// The feed rate of move `m` from `from`.
@@ -424,7 +424,7 @@ fn fmt_rate(v: f64) -> String {
 }
 
 struct Writer {
-    out: String,
+    out: Text,
     /// Program units per millimetre.
     scale: f64,
     decimals: usize,
