@@ -189,27 +189,35 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     output::guard(&[&args.drawing.file], &outputs).map_err(Failure)?;
     let mut analysis = read_analysis(&args.drawing)?;
     print_warnings(&inspect::import_warnings(&analysis));
-    if args.svg.is_none() {
+    let pockets = if args.svg.is_none() {
         // From here on only the pockets are read (the preview would draw the rest): the
         // drawing's elements and their chains, two more copies of every element, go back
-        // before the offset, whose working memory is the run's peak.
+        // before the offset, whose working memory is the run's peak, and the pockets are
+        // offset without a copy.
         analysis.drawing.elements = Vec::new();
         analysis.chains = Default::default();
-    }
+        std::mem::take(&mut analysis.nesting.pockets)
+    } else {
+        analysis.nesting.pockets.clone()
+    };
+    let pocket_count = pockets.len();
     let tol = &analysis.tolerance;
     let mut loops: Vec<pocketeer::geom::Contour> = Vec::new();
     let name = args.drawing.file.display();
-    for (k, p) in analysis.nesting.pockets.iter().enumerate() {
+    for (k, p) in pockets.into_iter().enumerate() {
         let at = p
             .boundary
             .segments
             .first()
             .map_or(pocketeer::geom::Point::new(0.0, 0.0), |s| s.start());
         let place = format!("pocket {} (outline through {})", k + 1, at);
-        let offset = pocketeer::offset::offset_pocket(p, args.distance, tol)
+        let region = pocketeer::geom::PreparedPocket::from_pocket(p);
+        let offset = region
+            .offset(args.distance, tol)
             .map_err(|e| Failure(format!("{name}: {place}: {e}")))?;
         if offset.is_empty() {
-            let r = pocketeer::offset::largest_inscribed_radius(p, tol)
+            let r = region
+                .largest_inscribed_radius(tol)
                 .map_err(|e| Failure(format!("{name}: {place}: {e}")))?;
             eprintln!(
                 "pocketeer: warning: {place} has no loop at {} mm: its largest inscribed circle has a radius of {r:.4} mm",
@@ -246,7 +254,7 @@ fn offset(args: &OffsetArgs) -> Result<(), Failure> {
     }
     eprintln!(
         "{} offset by {} mm: {} written to {}",
-        display::count(analysis.nesting.pockets.len(), "pocket", "pockets"),
+        display::count(pocket_count, "pocket", "pockets"),
         display::num(args.distance, 6),
         display::count(loops.len(), "loop", "loops"),
         output::describe(&args.output)

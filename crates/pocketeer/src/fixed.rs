@@ -25,6 +25,11 @@ impl Text {
         self.push_str(c.encode_utf8(&mut utf8));
     }
 
+    /// Appends `other`.
+    pub(crate) fn append(&mut self, other: &Text) {
+        self.0.extend_from_slice(&other.0);
+    }
+
     /// The length in bytes.
     pub(crate) fn len(&self) -> usize {
         self.0.len()

@@ -62,6 +62,26 @@ pub(crate) fn map_each<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync
     shared(items, f)
 }
 
+/// `(a(), b())`, the two at once on two threads when the machine has two cores and `work` (as
+/// in [`map_sized`]: segments, elements) is worth a thread: two independent halves of one
+/// stage, such as the two indexes of a prepared pocket.
+pub(crate) fn join<A: Send, B: Send>(
+    work: usize,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if work < MIN_WORK || cores() < 2 {
+        return (a(), b());
+    }
+    std::thread::scope(|scope| {
+        let helper = scope.spawn(b);
+        let a = a();
+        // The helper only panics if `b` does, which the serial path would too.
+        let b = helper.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (a, b)
+    })
+}
+
 /// `items.iter().map(f).collect()` shared out among [`cores`] threads, the calling one among
 /// them.
 fn shared<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
@@ -109,6 +129,17 @@ mod tests {
             assert_eq!(sized, squares);
             assert_eq!(super::map_each(&items, |x| x * x), squares);
         }
+    }
+
+    #[test]
+    fn join_gives_both_results_and_shares_large_work() {
+        let here = std::thread::current().id();
+        let id = || std::thread::current().id();
+        assert_eq!(super::join(10, || 1, || "two"), (1, "two"));
+        assert_eq!(super::join(10, id, id), (here, here), "small work stays here");
+        let (a, b) = super::join(1 << 20, id, id);
+        assert_eq!(a, here, "the calling thread takes the first");
+        assert_eq!(b != here, super::cores() > 1, "a helper takes the second");
     }
 
     #[test]

@@ -44,28 +44,6 @@ fn insunits(u: Units) -> i32 {
 pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     let k = 1.0 / units.mm();
     let mut s = Text::default();
-    // Group codes right-aligned in three columns, as AutoCAD writes them (by hand: the
-    // formatting machinery was a tenth of writing a large drawing).
-    let code = |s: &mut Text, code: u16| {
-        let digits = match code {
-            0..=9 => 1,
-            10..=99 => 2,
-            _ => 3,
-        };
-        s.push_str(&"   "[..3usize.saturating_sub(digits)]);
-        push_digits(s, u64::from(code), 1);
-        s.push('\n');
-    };
-    let pair = |s: &mut Text, c: u16, value: &str| {
-        code(s, c);
-        s.push_str(value);
-        s.push('\n');
-    };
-    let number = |s: &mut Text, c: u16, v: f64, decimals: usize| {
-        code(s, c);
-        push_number(s, v, decimals);
-        s.push('\n');
-    };
     pair(&mut s, 0, "SECTION");
     pair(&mut s, 2, "HEADER");
     pair(&mut s, 9, "$ACADVER");
@@ -76,35 +54,124 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
     pair(&mut s, 0, "SECTION");
     pair(&mut s, 2, "ENTITIES");
     for lc in contours {
-        // A bulge gives an arc's sweep as tan(sweep / 4), which a full turn has none of: a
-        // circle is written as its two halves. (Not as a CIRCLE entity, which has no
-        // direction: a loop round an island runs clockwise.)
-        let halves = |seg: &Segment| match seg {
-            Segment::Arc(a) if a.is_full_circle() => [
-                Some(Segment::Arc(a.subsegment(0.0, 0.5))),
-                Some(Segment::Arc(a.subsegment(0.5, 1.0))),
-            ],
-            _ => [Some(*seg), None],
-        };
-        let vertices = lc.contour.segments.iter().flat_map(halves).flatten();
+        let segments = &lc.contour.segments;
+        let count: usize = segments
+            .iter()
+            .map(|seg| vertices(seg).iter().flatten().count())
+            .sum();
         pair(&mut s, 0, "LWPOLYLINE");
         pair(&mut s, 100, "AcDbEntity");
         pair(&mut s, 8, lc.layer);
         pair(&mut s, 100, "AcDbPolyline");
-        pair(&mut s, 90, &vertices.clone().count().to_string());
+        pair(&mut s, 90, &count.to_string());
         pair(&mut s, 70, "1");
-        // About 30 bytes a coordinate: reserved once, not grown by doubling.
-        s.reserve(64 * lc.contour.segments.len());
-        for seg in vertices {
-            let p = seg.start();
-            number(&mut s, 10, p.x * k, 10);
-            number(&mut s, 20, p.y * k, 10);
-            if let Segment::Arc(a) = seg {
-                number(&mut s, 42, a.bulge(), 12);
+        if segments.len() < PARALLEL_VERTICES {
+            // About 30 bytes a coordinate: reserved once, not grown by doubling.
+            s.reserve(64 * segments.len());
+            write_vertices(&mut s, segments, k);
+        } else {
+            // Printing numbers is most of writing a large loop: its parts are printed at once
+            // on the machine's cores and joined in order.
+            let part = segments.len().div_ceil(4 * crate::parallel::cores());
+            let parts: Vec<&[Segment]> = segments.chunks(part).collect();
+            for text in crate::parallel::map_each(&parts, |part| {
+                let mut t = Text::default();
+                t.reserve(64 * part.len());
+                write_vertices(&mut t, part, k);
+                t
+            }) {
+                s.append(&text);
             }
         }
     }
     pair(&mut s, 0, "ENDSEC");
     pair(&mut s, 0, "EOF");
     s.into_string()
+}
+
+/// Loops of at least this many segments are printed in parts on several threads.
+const PARALLEL_VERTICES: usize = 16_384;
+
+/// The polyline vertices `seg` starts: a bulge gives an arc's sweep as tan(sweep / 4), which a
+/// full turn has none of, so a circle is written as its two halves. (Not as a CIRCLE entity,
+/// which has no direction: a loop round an island runs clockwise.)
+fn vertices(seg: &Segment) -> [Option<Segment>; 2] {
+    match seg {
+        Segment::Arc(a) if a.is_full_circle() => [
+            Some(Segment::Arc(a.subsegment(0.0, 0.5))),
+            Some(Segment::Arc(a.subsegment(0.5, 1.0))),
+        ],
+        _ => [Some(*seg), None],
+    }
+}
+
+/// Appends the vertex groups of `segments` (10, 20, and 42 for an arc), coordinates scaled by
+/// `k`.
+fn write_vertices(s: &mut Text, segments: &[Segment], k: f64) {
+    for seg in segments.iter().flat_map(vertices).flatten() {
+        let p = seg.start();
+        number(s, 10, p.x * k, 10);
+        number(s, 20, p.y * k, 10);
+        if let Segment::Arc(a) = seg {
+            number(s, 42, a.bulge(), 12);
+        }
+    }
+}
+
+/// Appends a group code right-aligned in three columns, as AutoCAD writes them (by hand: the
+/// formatting machinery was a tenth of writing a large drawing).
+fn code(s: &mut Text, code: u16) {
+    let digits = match code {
+        0..=9 => 1,
+        10..=99 => 2,
+        _ => 3,
+    };
+    s.push_str(&"   "[..3usize.saturating_sub(digits)]);
+    push_digits(s, u64::from(code), 1);
+    s.push('\n');
+}
+
+/// Appends a group: its code, then `value`.
+fn pair(s: &mut Text, c: u16, value: &str) {
+    code(s, c);
+    s.push_str(value);
+    s.push('\n');
+}
+
+/// Appends a group holding `v` with `decimals` decimals.
+fn number(s: &mut Text, c: u16, v: f64, decimals: usize) {
+    code(s, c);
+    push_number(s, v, decimals);
+    s.push('\n');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Contour, Point};
+
+    #[test]
+    fn a_loop_printed_in_parts_is_the_loop_printed_whole() {
+        // A wavy ring with more segments than are printed on one thread.
+        let n = PARALLEL_VERTICES + 1234;
+        let points: Vec<Point> = (0..n)
+            .map(|i| {
+                let a = i as f64 / n as f64 * std::f64::consts::TAU;
+                let r = 100.0 + 8.0 * (12.0 * a).sin();
+                Point::new(r * a.cos(), r * a.sin())
+            })
+            .collect();
+        let ring = Contour::polygon(&points);
+        let text = write_dxf(
+            &[LayeredContour {
+                layer: "offset",
+                contour: &ring,
+            }],
+            Units::Inches,
+        );
+        let mut whole = Text::default();
+        write_vertices(&mut whole, &ring.segments, 1.0 / Units::Inches.mm());
+        let whole = whole.into_string();
+        assert!(text.contains(&format!("AcDbPolyline\n 90\n{n}\n 70\n1\n{whole}  0\nENDSEC\n")));
+    }
 }

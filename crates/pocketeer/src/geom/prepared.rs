@@ -38,11 +38,34 @@ impl PreparedPocket {
         PreparedPocket::from_loops(pocket.contours().cloned().collect())
     }
 
+    /// Prepares `pocket`, keeping its contours without a copy (see [`PreparedPocket::new`]).
+    pub fn from_pocket(pocket: Pocket) -> PreparedPocket {
+        let mut loops = Vec::with_capacity(1 + pocket.islands.len());
+        loops.push(pocket.boundary);
+        loops.extend(pocket.islands);
+        PreparedPocket::from_loops(loops)
+    }
+
     /// Prepares the region on the left of `loops` (counter-clockwise around material,
     /// clockwise around holes), such as the loops of an offset.
     pub fn from_loops(loops: Vec<Contour>) -> PreparedPocket {
-        let segments: Vec<Segment> = loops.iter().flat_map(|c| c.segments.iter().copied()).collect();
-        let winding: Vec<WindingIndex> = loops.iter().map(|c| WindingIndex::new(&c.segments)).collect();
+        // Sized at once: collected from the contours' iterators it would grow by doubling, to
+        // twice a large pocket's segments.
+        let mut segments: Vec<Segment> = Vec::with_capacity(loops.iter().map(|c| c.segments.len()).sum());
+        for c in &loops {
+            segments.extend_from_slice(&c.segments);
+        }
+        // The two indexes are independent: built at once on a large pocket.
+        let (walls, winding) = crate::parallel::join(
+            segments.len(),
+            || SegmentIndex::from_vec(segments),
+            || {
+                loops
+                    .iter()
+                    .map(|c| WindingIndex::new(&c.segments))
+                    .collect::<Vec<_>>()
+            },
+        );
         let finite = |b: &Aabb| b.min.is_finite() && b.max.is_finite();
         let extents: Vec<Aabb> = winding
             .iter()
@@ -52,7 +75,7 @@ impl PreparedPocket {
             .filter(|&k| !finite(&winding[k].extent()))
             .collect();
         PreparedPocket {
-            walls: SegmentIndex::from_vec(segments),
+            walls,
             contours: loops,
             winding,
             extents: BoxIndex::new(&extents),

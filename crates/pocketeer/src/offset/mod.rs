@@ -119,6 +119,23 @@ pub enum OffsetError {
 /// assert!((radii[3] - std::f64::consts::PI * 4.0).abs() < 1e-9);
 /// ```
 impl PreparedPocket {
+    /// The radius of the largest circle inside the region, within a millionth of it (see
+    /// [`largest_inscribed_radius`]).
+    pub fn largest_inscribed_radius(&self, tol: &Tolerance) -> Result<f64, OffsetError> {
+        // The boundary's box: the islands lie inside it.
+        let b = self.bbox();
+        let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()) * (1.0 + 1e-9) + tol.eps);
+        while hi - lo > 1e-6 * hi.max(1e-3) {
+            let mid = 0.5 * (lo + hi);
+            if self.offset(mid, tol)?.is_empty() {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Ok(lo)
+    }
+
     /// The region eroded by `d` > 0 (grown by |d| for `d` < 0): loops counter-clockwise around
     /// material, clockwise around holes.
     pub fn offset(&self, d: f64, tol: &Tolerance) -> Result<Vec<Contour>, OffsetError> {
@@ -263,18 +280,7 @@ pub fn offset_pocket(pocket: &Pocket, d: f64, tol: &Tolerance) -> Result<Vec<Con
 /// assert!((r - 15.0).abs() < 1e-4);
 /// ```
 pub fn largest_inscribed_radius(pocket: &Pocket, tol: &Tolerance) -> Result<f64, OffsetError> {
-    let region = PreparedPocket::new(pocket);
-    let b = pocket.boundary.bbox();
-    let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()) * (1.0 + 1e-9) + tol.eps);
-    while hi - lo > 1e-6 * hi.max(1e-3) {
-        let mid = 0.5 * (lo + hi);
-        if region.offset(mid, tol)?.is_empty() {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(lo)
+    PreparedPocket::new(pocket).largest_inscribed_radius(tol)
 }
 
 /// The offset of one closed contour by `d`: inward for `d` > 0 (the contour's inside eroded),
