@@ -98,6 +98,23 @@ pub fn overlapping_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
 /// assert_eq!(box_pairs(&boxes), BoxIndex::new(&boxes).pairs());
 /// ```
 pub fn box_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
+    let mut out = box_pairs_unsorted(boxes);
+    out.sort_unstable();
+    out
+}
+
+/// The pairs of [`box_pairs`] in no set order: for a caller that orders what it finds among
+/// the pairs (a contour's few crossings) rather than the many pairs themselves.
+///
+/// ```
+/// use pocketeer::geom::{box_pairs, box_pairs_unsorted, Aabb, Point};
+/// let b = |x0, y0, x1, y1| Aabb::from_points(Point::new(x0, y0), Point::new(x1, y1));
+/// let boxes = [b(0.0, 0.0, 2.0, 2.0), b(1.0, 1.0, 3.0, 3.0), b(5.0, 0.0, 6.0, 1.0), b(2.0, 3.0, 3.0, 6.0)];
+/// let mut pairs = box_pairs_unsorted(&boxes);
+/// pairs.sort();
+/// assert_eq!(pairs, box_pairs(&boxes));
+/// ```
+pub fn box_pairs_unsorted(boxes: &[Aabb]) -> Vec<(usize, usize)> {
     // About what building and walking the tree costs, in box comparisons.
     let budget = 16 * boxes.len() as u64 + 1024;
     let mut out = Vec::new();
@@ -108,7 +125,6 @@ pub fn box_pairs(boxes: &[Aabb]) -> Vec<(usize, usize)> {
     if swept.is_err() {
         return BoxIndex::new(boxes).pairs();
     }
-    out.sort_unstable();
     out
 }
 

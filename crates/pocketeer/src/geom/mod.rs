@@ -24,7 +24,10 @@ pub use contour::{bbox_of, is_convex, signed_area, winding_number, Contour, Wind
 pub use distance::{
     closest_param, closest_point, distance_from_segment, segment_distance, segments_nearer_than,
 };
-pub use index::{box_pairs, for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex, Stopped};
+pub use index::{
+    box_pairs, box_pairs_unsorted, for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex,
+    Stopped,
+};
 pub use intersect::{intersect, Intersection, Intersections};
 pub use line::Line;
 pub use packed::{PackedTree, Search};

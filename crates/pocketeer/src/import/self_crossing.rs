@@ -6,8 +6,8 @@
 //! removed (and reported); any other self-crossing is refused with its coordinates.
 
 use crate::geom::{
-    bbox_of, box_pairs, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point, Segment,
-    Tolerance,
+    bbox_of, box_pairs_unsorted, distance_from_segment, intersect, Aabb, Contour, Intersection, Line, Point,
+    Segment, Tolerance,
 };
 use std::f64::consts::PI;
 
@@ -94,7 +94,11 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
     // Neighbours turning back tangentially at their joint meet again to within rounding up to
     // about sqrt(2 r eps) from it: hits that near, on curves that do not part, are the joint.
     let joint_radius = tol.join.max(tol.crossing());
-    for (i, j) in box_pairs(&boxes) {
+    // The meetings are found among the pairs in the sweep's order, then put in the order of
+    // the pairs (i, j): the first is the same whatever order the pairs came in, and sorting
+    // the few meetings is cheaper than sorting the many pairs.
+    let mut found: Vec<(usize, usize, Intersection)> = Vec::new();
+    for (i, j) in box_pairs_unsorted(&boxes) {
         let meet_only_at_joint = (i + 1 == j && only_at_joint(&segs[i], &segs[j], 0.25 * tol.crossing()))
             || (i == 0 && j + 1 == n && only_at_joint(&segs[j], &segs[i], 0.25 * tol.crossing()));
         if meet_only_at_joint {
@@ -115,9 +119,16 @@ fn visit_crossings(c: &Contour, tol: &Tolerance, mut f: impl FnMut(usize, usize,
                     })
                 }
             };
-            if !at_joint && !f(i, j, h) {
-                return;
+            if !at_joint {
+                found.push((i, j, h));
             }
+        }
+    }
+    // Stable: a pair's meetings stay in the order `intersect` gives them.
+    found.sort_by_key(|&(i, j, _)| (i, j));
+    for (i, j, h) in found {
+        if !f(i, j, h) {
+            return;
         }
     }
 }
