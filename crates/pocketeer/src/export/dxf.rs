@@ -65,23 +65,23 @@ pub fn write_dxf(contours: &[LayeredContour], units: Units) -> String {
         pair(&mut s, 100, "AcDbPolyline");
         pair(&mut s, 90, &count.to_string());
         pair(&mut s, 70, "1");
-        if segments.len() < PARALLEL_VERTICES {
-            // About 30 bytes a coordinate: reserved once, not grown by doubling.
-            s.reserve(64 * segments.len());
-            write_vertices(&mut s, segments, k);
+        // Printing numbers is most of writing a large loop: a loop of PARALLEL_VERTICES
+        // segments or more is printed in parts at once on the machine's cores, joined in
+        // order; a smaller one is a single part, printed here.
+        let part = if segments.len() < PARALLEL_VERTICES {
+            segments.len().max(1)
         } else {
-            // Printing numbers is most of writing a large loop: its parts are printed at once
-            // on the machine's cores and joined in order.
-            let part = segments.len().div_ceil(4 * crate::parallel::cores());
-            let parts: Vec<&[Segment]> = segments.chunks(part).collect();
-            for text in crate::parallel::map_each(&parts, |part| {
-                let mut t = Text::default();
-                t.reserve(64 * part.len());
-                write_vertices(&mut t, part, k);
-                t
-            }) {
-                s.append(&text);
-            }
+            segments.len().div_ceil(4 * crate::parallel::cores())
+        };
+        let parts: Vec<&[Segment]> = segments.chunks(part).collect();
+        for text in crate::parallel::map_each(&parts, |part| {
+            // About 30 bytes a coordinate: reserved once, not grown by doubling.
+            let mut t = Text::default();
+            t.reserve(64 * part.len());
+            write_vertices(&mut t, part, k);
+            t
+        }) {
+            s.append(&text);
         }
     }
     pair(&mut s, 0, "ENDSEC");

@@ -35,7 +35,7 @@ pub struct PreparedPocket {
 impl PreparedPocket {
     /// Prepares `pocket` (boundary counter-clockwise, islands clockwise).
     pub fn new(pocket: &Pocket) -> PreparedPocket {
-        PreparedPocket::from_loops(pocket.contours().cloned().collect())
+        PreparedPocket::from_pocket(pocket.clone())
     }
 
     /// Prepares `pocket`, keeping its contours without a copy (see [`PreparedPocket::new`]).
