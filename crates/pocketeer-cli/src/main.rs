@@ -1,5 +1,6 @@
 //! The `pocketeer` command: a thin layer of argument parsing and messages over the library.
 
+mod allocator;
 mod check;
 mod display;
 mod inspect;
@@ -282,6 +283,7 @@ fn emit(text: &str) -> Result<(), Failure> {
 }
 
 fn main() -> ExitCode {
+    allocator::tune();
     let cli = Cli::parse();
     progress::QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
     let result = match &cli.command {
