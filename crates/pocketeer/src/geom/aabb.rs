@@ -67,12 +67,15 @@ impl Aabb {
 
     /// True when the boxes share at least one point.
     pub fn intersects(&self, o: &Aabb) -> bool {
-        self.min.x <= o.max.x && o.min.x <= self.max.x && self.min.y <= o.max.y && o.min.y <= self.max.y
+        // `&`, not `&&`: the four tests in one go, without a branch each to mispredict (the
+        // index searches make millions of these tests whose outcomes follow no pattern).
+        (self.min.x <= o.max.x) & (o.min.x <= self.max.x) & (self.min.y <= o.max.y) & (o.min.y <= self.max.y)
     }
 
     /// True when `p` lies in the box or on its edge.
     pub fn contains(&self, p: Point) -> bool {
-        p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
+        // `&`: see `intersects`.
+        (p.x >= self.min.x) & (p.x <= self.max.x) & (p.y >= self.min.y) & (p.y <= self.max.y)
     }
 
     /// Squared distance from `p` to the box (zero inside it).
