@@ -102,10 +102,11 @@ impl PreparedPocket {
     /// True when `p` (not on a contour) lies in the region: the winding numbers of the
     /// counter-clockwise boundary and clockwise islands add up to 1 there.
     pub fn contains(&self, p: Point) -> bool {
-        // The ray from p to the right: a contour whose extent it misses winds 0 times.
-        let ray = Aabb::from_points(p, Point::new(f64::MAX, p.y));
+        // A closed contour winds 0 times round a point outside its extent (its gaps closed
+        // included): only the few extents holding p count, not every one a ray from p meets
+        // (on a plate, the holes to the right in p's row).
         let winding = |k: usize| self.winding[k].winding(&self.contours[k].segments, p);
-        let indexed: i32 = self.extents.intersecting(&ray).map(winding).sum();
+        let indexed: i32 = self.extents.at_point(p).map(winding).sum();
         indexed + self.unindexed.iter().map(|&k| winding(k)).sum::<i32>() > 0
     }
 
