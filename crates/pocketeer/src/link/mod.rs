@@ -809,11 +809,12 @@ impl<'a> Linker<'a> {
             // As `stays_inside`.
             Some(walls) => {
                 let (s, r) = (Segment::Line(crate::geom::Line::new(a, b)), d - slack);
-                let sb = s.bbox();
+                // As the index's search: the walls whose boxes meet the move's grown by r.
+                let near = s.bbox().inflated(r);
                 a.distance(b) <= slack
                     || ((r <= 0.0
                         || !(walls.iter()).any(|(w, wb)| {
-                            wb.distance_to_box(&sb) < r && crate::geom::segments_nearer_than(w, &s, r, eps)
+                            wb.intersects(&near) && crate::geom::segments_nearer_than(w, &s, r, eps)
                         }))
                         && !self.uncut.crossed(self.plan(), a, b, eps))
             }
