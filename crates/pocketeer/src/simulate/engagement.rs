@@ -16,7 +16,7 @@
 use super::check::Place;
 use super::gcode::{Motion, ProgramMove};
 use super::history::CutHistory;
-use crate::geom::{distance_from_segment, Segment, Vector};
+use crate::geom::{distance_from_segment, Aabb, Segment, Vector};
 use serde::Serialize;
 
 /// Angle between samples round the tool, degrees.
@@ -192,11 +192,14 @@ pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f
     // A point exactly on an earlier disc's edge is cut: the tool's own circumference at the
     // start of a slot touches only its centre's path behind it.
     let covered = r * (1.0 - 1e-9);
+    // A point nearer a move than `covered` lies in its box grown by that much: the box is
+    // tested first, the distance only for the few moves whose boxes hold the point.
+    let boxes: Vec<Aabb> = flat.iter().map(|s| s.bbox().inflated(covered)).collect();
     let engaged = round_the_tool()
         .iter()
         .filter(|&&u| {
             let q = here + u * r;
-            !flat.iter().any(|s| distance_from_segment(s, q) < covered)
+            !(flat.iter().zip(&boxes)).any(|(s, b)| b.contains(q) && distance_from_segment(s, q) < covered)
                 && !sloped.iter().any(|&j| history.passed(j, q, z, covered))
         })
         .count();
