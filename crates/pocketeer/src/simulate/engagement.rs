@@ -180,26 +180,28 @@ pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f
     // Moves at one height (nearly all) cut wherever they passed; a helix or a ramp only where
     // it was deep enough.
     let level = |j: usize| (moves[j].from.z - moves[j].to.z).abs() <= 1e-9;
-    let mut flat: Vec<Segment> = earlier
-        .iter()
-        .filter(|&&j| level(j))
-        .map(|&j| *history.footprint(j))
-        .collect();
-    let sloped: Vec<usize> = earlier.into_iter().filter(|&j| !level(j)).collect();
-    if t > 0.0 {
-        flat.push(history.footprint(k).subsegment(0.0, t));
-    }
     // A point exactly on an earlier disc's edge is cut: the tool's own circumference at the
     // start of a slot touches only its centre's path behind it.
     let covered = r * (1.0 - 1e-9);
-    // A point nearer a move than `covered` lies in its box grown by that much: the box is
-    // tested first, the distance only for the few moves whose boxes hold the point.
-    let boxes: Vec<Aabb> = flat.iter().map(|s| s.bbox().inflated(covered)).collect();
+    // Each flat footprint with its box grown by `covered`: a point nearer it than that lies in
+    // the box, so the box is tested first and the distance only where the box holds the point.
+    let grown = |s: Segment| (s, s.bbox().inflated(covered));
+    let mut flat: Vec<(Segment, Aabb)> = earlier
+        .iter()
+        .filter(|&&j| level(j))
+        .map(|&j| grown(*history.footprint(j)))
+        .collect();
+    let sloped: Vec<usize> = earlier.into_iter().filter(|&j| !level(j)).collect();
+    if t > 0.0 {
+        flat.push(grown(history.footprint(k).subsegment(0.0, t)));
+    }
     let engaged = round_the_tool()
         .iter()
         .filter(|&&u| {
             let q = here + u * r;
-            !(flat.iter().zip(&boxes)).any(|(s, b)| b.contains(q) && distance_from_segment(s, q) < covered)
+            !flat
+                .iter()
+                .any(|(s, b)| b.contains(q) && distance_from_segment(s, q) < covered)
                 && !sloped.iter().any(|&j| history.passed(j, q, z, covered))
         })
         .count();
