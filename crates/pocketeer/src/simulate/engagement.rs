@@ -6,8 +6,10 @@
 //! circumference is in contact when no earlier position of the tool at that height or deeper
 //! covered it. Samples are taken every [`ANGLE_STEP_DEG`] round the tool (the engaged arc is
 //! then within one step of the exact one: each end of it within half a step) and at most
-//! [`SPACING_PER_RADIUS`] of the radius apart along each cutting move, so a peak shorter than
-//! that along the path may be missed.
+//! [`SPACING_PER_RADIUS`] of the radius apart along the cutting moves (along each move at least
+//! that long; across a run of shorter moves, where their length reaches it), so a peak shorter
+//! than that along the path may be missed. The directions an earlier move covered are found
+//! as whole ranges (`tool_circle.rs`), not one by one.
 //!
 //! Only moves at one height below Z=0 count (the cutting length): helices, ramps and plunges
 //! are entries, and their engagement is not a question of stepover or linking. Links through
@@ -16,11 +18,12 @@
 use super::check::Place;
 use super::gcode::{Motion, ProgramMove};
 use super::history::CutHistory;
-use crate::geom::{distance_from_segment, Aabb, Segment, Vector};
+use super::tool_circle::{Swept, ToolCircle, DIRECTIONS};
+use crate::geom::{distance_from_segment, Vector};
 use serde::Serialize;
 
 /// Angle between samples round the tool, degrees.
-pub const ANGLE_STEP_DEG: f64 = 1.0;
+pub const ANGLE_STEP_DEG: f64 = 360.0 / DIRECTIONS as f64;
 
 /// Largest distance between samples along a move, as a share of the tool radius.
 pub const SPACING_PER_RADIUS: f64 = 0.125;
@@ -92,29 +95,53 @@ fn sampled(
     if length / spacing > budget as f64 {
         spacing = length / budget as f64;
     }
+    // A move at least the spacing long is sampled along itself: at least twice, at most the
+    // spacing apart, the last sample at its end. Shorter moves in a row (a finely divided
+    // wall, a curve written as short lines) share samples: one at the end of the move where
+    // their length since the last sample reaches the spacing, and one at the end of the last
+    // of them. Sampling each such move would measure a program of moves a tenth of the
+    // spacing long twenty times as densely as the spacing says, and take that much longer.
+    let long = |len: f64| len >= spacing;
     let per_move = |len: f64| ((len / spacing).ceil() as usize).max(2);
-    // At least two samples a move, unless that breaks the budget: a program of a million
-    // moves micrometres long (a finely divided wall) would take two million. Then the samples
-    // go at the spacing along the whole program, each standing for the length since the last.
-    let by_move = cutting
-        .iter()
-        .map(|&k| per_move(moves[k].length()))
-        .sum::<usize>()
-        <= budget;
+    let (mut along_long, mut short) = (0usize, 0.0);
+    for &k in &cutting {
+        let len = moves[k].length();
+        if long(len) {
+            along_long += per_move(len) + 1;
+        } else {
+            short += len;
+        }
+    }
+    // Within the budget, as above; past it, the samples go at the spacing along the whole
+    // program, each standing for the length since the last.
+    let by_move = along_long as f64 + short / spacing <= budget as f64;
     let mut since_last = 0.0;
+    // The short move the length since the last sample ends on.
+    let mut pending: Option<usize> = None;
     // (engagement in degrees, length it stands for)
     let mut samples: Vec<(f64, f64)> = Vec::new();
     let mut max: (f64, Option<Place>) = (0.0, None);
-    // The places measured along one move: (parameter, length it stands for).
-    let mut places: Vec<(f64, f64)> = Vec::new();
-    for &k in &cutting {
+    // The places to measure: (move, parameter, length it stands for).
+    let mut places: Vec<(usize, f64, f64)> = Vec::new();
+    for (i, &k) in cutting.iter().enumerate() {
         progress.advance(1);
-        let m = &moves[k];
-        let len = m.length();
+        let len = moves[k].length();
         places.clear();
-        if by_move {
+        if by_move && long(len) {
+            if let Some(p) = pending.take() {
+                places.push((p, 1.0, since_last));
+                since_last = 0.0;
+            }
             let n = per_move(len);
-            places.extend((1..=n).map(|j| (j as f64 / n as f64, len / n as f64)));
+            places.extend((1..=n).map(|j| (k, j as f64 / n as f64, len / n as f64)));
+        } else if by_move {
+            since_last += len;
+            pending = Some(k);
+            if since_last >= spacing || i + 1 == cutting.len() {
+                places.push((k, 1.0, since_last));
+                since_last = 0.0;
+                pending = None;
+            }
         } else {
             // The first sample where the length since the last reaches the spacing, then
             // every spacing; what is left over counts towards the next move's.
@@ -122,6 +149,7 @@ fn sampled(
             let mut from = 0.0;
             while along <= len {
                 places.push((
+                    k,
                     along / len,
                     along - from + if from == 0.0 { since_last } else { 0.0 },
                 ));
@@ -134,10 +162,11 @@ fn sampled(
                 len - from
             };
         }
-        for &(t, w) in &places {
-            let deg = engagement_at(moves, history, k, t, r);
+        for &(j, t, w) in &places {
+            let deg = engagement_at(moves, history, j, t, r);
             samples.push((deg, w));
             if deg > max.0 || max.1.is_none() {
+                let m = &moves[j];
                 let c = m.point_at(t);
                 max = (
                     deg,
@@ -183,26 +212,34 @@ pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f
     // A point exactly on an earlier disc's edge is cut: the tool's own circumference at the
     // start of a slot touches only its centre's path behind it.
     let covered = r * (1.0 - 1e-9);
-    // Each flat footprint with its box grown by `covered`: a point nearer it than that lies in
-    // the box, so the box is tested first and the distance only where the box holds the point.
-    let grown = |s: Segment| (s, s.bbox().inflated(covered));
-    let mut flat: Vec<(Segment, Aabb)> = earlier
+    let circle = ToolCircle {
+        center: here,
+        radius: r,
+    };
+    let mut swept = Swept::new(circle, covered);
+    let own = (t > 0.0).then(|| history.footprint(k).subsegment(0.0, t));
+    for s in earlier
         .iter()
         .filter(|&&j| level(j))
-        .map(|&j| grown(*history.footprint(j)))
-        .collect();
-    let sloped: Vec<usize> = earlier.into_iter().filter(|&j| !level(j)).collect();
-    if t > 0.0 {
-        flat.push(grown(history.footprint(k).subsegment(0.0, t)));
+        .map(|&j| history.footprint(j))
+        .chain(&own)
+    {
+        swept.add(s);
+        if swept.directions().is_all() {
+            return 0.0;
+        }
     }
+    let swept = swept.directions();
     let engaged = round_the_tool()
         .iter()
-        .filter(|&&u| {
-            let q = here + u * r;
-            !flat
-                .iter()
-                .any(|(s, b)| b.contains(q) && distance_from_segment(s, q) < covered)
-                && !sloped.iter().any(|&j| history.passed(j, q, z, covered))
+        .enumerate()
+        .filter(|&(i, &u)| {
+            !swept.contains(i) && {
+                let q = here + u * r;
+                !earlier
+                    .iter()
+                    .any(|&j| !level(j) && history.passed(j, q, z, covered))
+            }
         })
         .count();
     engaged as f64 * ANGLE_STEP_DEG
@@ -210,9 +247,9 @@ pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f
 
 /// The unit directions sampled round the tool, made once.
 fn round_the_tool() -> &'static [Vector] {
-    static DIRECTIONS: std::sync::OnceLock<Vec<Vector>> = std::sync::OnceLock::new();
-    DIRECTIONS.get_or_init(|| {
-        let steps = (360.0 / ANGLE_STEP_DEG).round() as usize;
+    static TABLE: std::sync::OnceLock<Vec<Vector>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let steps = DIRECTIONS;
         let step = std::f64::consts::TAU / steps as f64;
         (0..steps)
             .map(|i| Vector::from_angle((i as f64 + 0.5) * step))
@@ -352,9 +389,8 @@ mod tests {
 
     #[test]
     fn a_slot_of_many_tiny_moves_is_sampled_within_the_budget_and_is_still_a_slot() {
-        // 1000 moves of 0.01 mm: two samples a move would be 2000, the budget is 100. The
-        // samples then go every eighth of the radius (0.25 mm) along the program, 40 in all,
-        // each standing for 0.25 mm.
+        // 1000 moves of 0.01 mm with a budget of 100 samples: the samples go every eighth of
+        // the radius (0.25 mm) along the program, 40 in all, each standing for 0.25 mm.
         let r = 2.0;
         let moves: Vec<ProgramMove> = (0..1000)
             .map(|k| {
@@ -372,11 +408,30 @@ mod tests {
         let weighed: f64 = e.histogram.iter().sum();
         assert!((10.0 - 0.25 - 1e-9..=10.0 + 1e-9).contains(&weighed), "{weighed}");
         assert!((e.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{e:?}");
-        // Within the budget, every move is sampled as before: twice.
+        // Within a larger budget, the moves, each shorter than the spacing, share samples: one
+        // where their length since the last reaches it (25 moves), 40 in all, and the length
+        // of every move counted.
         let full = sampled(&moves, &history, r, 2000, &crate::progress::Silent);
-        assert_eq!(full.samples, 2000);
+        assert_eq!(full.samples, 40, "{full:?}");
         assert!((full.histogram.iter().sum::<f64>() - 10.0).abs() < 1e-9);
         assert!((full.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{full:?}");
+    }
+
+    #[test]
+    fn short_moves_between_long_ones_get_one_sample_that_counts_their_length() {
+        // 1 mm, ten moves of 0.01 mm, 1 mm, along one slot (spacing 0.25 mm): four samples on
+        // each long move, one at the end of the short ones for their 0.1 mm.
+        let r = 2.0;
+        let mut moves = vec![feed(1, (0.0, 0.0, -1.0), (1.0, 0.0, -1.0))];
+        for k in 0..10 {
+            let x = 1.0 + 0.01 * k as f64;
+            moves.push(feed(k + 2, (x, 0.0, -1.0), (x + 0.01, 0.0, -1.0)));
+        }
+        moves.push(feed(12, (1.1, 0.0, -1.0), (2.1, 0.0, -1.0)));
+        let e = engagement(&moves, &CutHistory::new(&moves, r), r);
+        assert_eq!(e.samples, 9, "{e:?}");
+        assert!((e.histogram.iter().sum::<f64>() - 2.1).abs() < 1e-9, "{e:?}");
+        assert!((e.p95_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{e:?}");
     }
 
     #[test]
