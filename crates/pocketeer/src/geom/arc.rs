@@ -1,5 +1,6 @@
 //! Circular arcs of any sweep in either direction, full circles included.
 
+use super::rounding::ceil;
 use super::{Aabb, Point, Vector};
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, TAU};
@@ -347,51 +348,8 @@ impl Arc {
     }
 }
 
-/// `x.ceil()` for the small finite quotients of [`Arc::bbox`], through an integer: `f64::ceil`
-/// is a call into the C library on the baseline x86-64 target, and a box is taken of every
-/// arc of a drawing several times over. Values beyond `i64` (and NaN) go to `f64::ceil`.
-fn ceil(x: f64) -> f64 {
-    if x.abs() < 1e15 {
-        let t = x as i64 as f64;
-        // The truncation rounds towards zero; a positive fraction goes up one.
-        if t < x {
-            t + 1.0
-        } else {
-            // (-0.5 gives 0.0 where `f64::ceil` gives -0.0: the same number.)
-            t
-        }
-    } else {
-        x.ceil()
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn ceil_through_an_integer_is_the_library_ceil() {
-        let mut values = vec![
-            0.0,
-            -0.0,
-            0.5,
-            -0.5,
-            1.0,
-            -1.0,
-            1e15,
-            -1e15,
-            3e15,
-            f64::MAX,
-            f64::MIN,
-        ];
-        values.extend((-4000..=4000).map(|k| k as f64 * 0.001 * std::f64::consts::FRAC_PI_2));
-        values.extend((-8..=8).flat_map(|k| {
-            let x = k as f64;
-            [x.next_down(), x, x.next_up()]
-        }));
-        for x in values {
-            assert_eq!(super::ceil(x), x.ceil(), "{x}");
-        }
-    }
-
     use super::*;
     use std::f64::consts::PI;
 

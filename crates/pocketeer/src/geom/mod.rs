@@ -13,6 +13,7 @@ mod packed;
 mod pocket;
 mod point;
 mod prepared;
+pub(crate) mod rounding;
 mod segment;
 mod stitch;
 mod tolerance;

@@ -16,6 +16,7 @@
 //! The answer is the point test's for every direction except one lying within rounding of a
 //! region's edge.
 
+use crate::geom::rounding::{ceil, floor};
 use crate::geom::{Point, Segment, Vector};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -86,6 +87,7 @@ impl Directions {
         if last < first {
             return Directions::NONE;
         }
+        let (first, last) = (first as i64, last as i64);
         let n = ((last - first) as usize + 1).min(DIRECTIONS);
         let start = first.rem_euclid(DIRECTIONS as i64) as usize;
         let mut d = Directions::NONE;
@@ -131,19 +133,6 @@ impl Directions {
             self.0[WORDS - 1] &= u64::MAX >> spare;
         }
     }
-}
-
-/// The greatest whole number at most `x` (finite, well inside the range of `i64`), without the
-/// library call `f64::floor` is on processors without SSE4.1.
-fn floor(x: f64) -> i64 {
-    let i = x as i64;
-    i - i64::from((i as f64) > x)
-}
-
-/// The least whole number at least `x` (as [`floor`]).
-fn ceil(x: f64) -> i64 {
-    let i = x as i64;
-    i + i64::from((i as f64) < x)
 }
 
 /// The tool's circle: its centre and radius, the points sampled round it being
