@@ -416,8 +416,12 @@ fn swept(moves: &[ProgramMove], depth: f64, r: f64) -> Vec<Shape> {
     united(strokes)
 }
 
-/// Most points of a chain stroked in one go by [`swept`].
-const STROKE_PIECE: usize = 2000;
+/// Most points of a chain stroked in one go by [`swept`]. Short runs make the most overlays
+/// but the cheapest: a run's stroke crosses itself little, and two neighbouring runs' strokes
+/// meet mostly along their shared end. On the 300-hole plate's program the check took 0.77 of
+/// the time with runs of 100 points that it took with 2 000 (50 and 100 alike, 200 0.81, 500
+/// 0.88), the 1 200-hole plate's 0.80 (at 1.2 times the peak memory).
+const STROKE_PIECE: usize = 100;
 
 /// `chains` cut into runs of at most `n` points (n ≥ 2), each beginning where the one before
 /// ends. With round joins and ends the strokes of the runs unite to the stroke of the chain:
