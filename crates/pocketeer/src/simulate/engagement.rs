@@ -18,8 +18,8 @@
 use super::check::Place;
 use super::gcode::{Motion, ProgramMove};
 use super::history::CutHistory;
-use super::tool_circle::{Swept, ToolCircle, DIRECTIONS};
-use crate::geom::{distance_from_segment, Vector};
+use super::tool_circle::{unit_vectors, Swept, ToolCircle, DIRECTIONS};
+use crate::geom::distance_from_segment;
 use serde::Serialize;
 
 /// Angle between samples round the tool, degrees.
@@ -230,31 +230,18 @@ pub fn engagement_at(moves: &[ProgramMove], history: &CutHistory, k: usize, t: f
         }
     }
     let swept = swept.directions();
-    let engaged = round_the_tool()
+    let sloped: Vec<usize> = earlier.into_iter().filter(|&j| !level(j)).collect();
+    let engaged = unit_vectors()
         .iter()
         .enumerate()
         .filter(|&(i, &u)| {
             !swept.contains(i) && {
                 let q = here + u * r;
-                !earlier
-                    .iter()
-                    .any(|&j| !level(j) && history.passed(j, q, z, covered))
+                !sloped.iter().any(|&j| history.passed(j, q, z, covered))
             }
         })
         .count();
     engaged as f64 * ANGLE_STEP_DEG
-}
-
-/// The unit directions sampled round the tool, made once.
-fn round_the_tool() -> &'static [Vector] {
-    static TABLE: std::sync::OnceLock<Vec<Vector>> = std::sync::OnceLock::new();
-    TABLE.get_or_init(|| {
-        let steps = DIRECTIONS;
-        let step = std::f64::consts::TAU / steps as f64;
-        (0..steps)
-            .map(|i| Vector::from_angle((i as f64 + 0.5) * step))
-            .collect()
-    })
 }
 
 /// The figures of [`Engagement`] from the samples (degrees, length).

@@ -135,6 +135,18 @@ impl Directions {
     }
 }
 
+/// The unit vector of each direction, by index: direction k at (k + ½)·360°/[`DIRECTIONS`]
+/// from the x axis, made once.
+pub fn unit_vectors() -> &'static [Vector] {
+    static TABLE: std::sync::OnceLock<Vec<Vector>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let step = TAU / DIRECTIONS as f64;
+        (0..DIRECTIONS)
+            .map(|k| Vector::from_angle((k as f64 + 0.5) * step))
+            .collect()
+    })
+}
+
 /// The tool's circle: its centre and radius, the points sampled round it being
 /// `center + radius·u_k`.
 #[derive(Debug, Clone, Copy)]
@@ -202,7 +214,7 @@ impl ToolCircle {
                 } else {
                     ring
                 };
-                ring.and(self.wedge(arc.center(), arc.start_angle(), arc.sweep()))
+                ring.and(self.wedge(c, arc.start_angle(), arc.sweep()))
             }
         }
     }
@@ -277,10 +289,6 @@ mod tests {
     use crate::geom::{distance_from_segment, Arc, Line};
     use proptest::prelude::*;
 
-    fn direction(k: usize) -> Vector {
-        Vector::from_angle((k as f64 + 0.5) * TAU / DIRECTIONS as f64)
-    }
-
     fn swept_by(circle: ToolCircle, segments: &[Segment], rho: f64) -> Directions {
         let mut swept = Swept::new(circle, rho);
         for s in segments {
@@ -295,7 +303,7 @@ mod tests {
         let got = swept_by(*circle, std::slice::from_ref(s), rho);
         let slack = 1e-9 * (1.0 + circle.radius + rho);
         for k in 0..DIRECTIONS {
-            let q = circle.center + direction(k) * circle.radius;
+            let q = circle.center + unit_vectors()[k] * circle.radius;
             let d = distance_from_segment(s, q);
             if (d - rho).abs() > slack && got.contains(k) != (d < rho) {
                 return Err(format!(

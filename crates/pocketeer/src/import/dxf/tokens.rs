@@ -334,7 +334,6 @@ fn line_break(bytes: &[u8]) -> Option<usize> {
     bytes[at..].iter().position(|&b| b == b'\n').map(|n| at + n)
 }
 
-/// The first `N` bytes of `b`, which has `N` (zeros where it has fewer).
 /// Where `needle` first occurs in `haystack`, by a vector search.
 ///
 /// On x86-64 the SSE2 search is taken directly: every x86-64 processor has SSE2, so nothing is
@@ -350,6 +349,7 @@ fn find_byte(needle: u8, haystack: &[u8]) -> Option<usize> {
     memchr::memchr(needle, haystack)
 }
 
+/// The first `N` bytes of `b`, which has `N` (zeros where it has fewer).
 fn array<const N: usize>(b: &[u8]) -> [u8; N] {
     let mut a = [0u8; N];
     let n = b.len().min(N);
