@@ -317,29 +317,23 @@ impl Arc {
 
     /// The piece between parameters `t0` and `t1` (an end at 0 or 1 is the arc's own).
     pub fn subsegment(&self, t0: f64, t1: f64) -> Arc {
-        let piece = Arc::new(
-            self.center,
-            self.radius,
-            self.angle_at(t0),
-            self.sweep * (t1 - t0),
-        );
-        if piece.is_full_circle() {
-            return piece;
+        let (start_angle, sweep) = (self.angle_at(t0), self.sweep * (t1 - t0));
+        if sweep.abs() >= FULL_TURN {
+            return Arc::new(self.center, self.radius, start_angle, sweep);
         }
-        let end_at = |t: f64, computed: Point| {
+        // Only the ends that are not the arc's own are computed: a sine and cosine each.
+        let end_at = |t: f64, angle: f64| {
             if t == 0.0 {
                 self.start
             } else if t == 1.0 {
                 self.end
             } else {
-                computed
+                self.point_at_angle(angle)
             }
         };
-        Arc {
-            start: end_at(t0, piece.start),
-            end: end_at(t1, piece.end),
-            ..piece
-        }
+        let start = end_at(t0, start_angle);
+        let end = end_at(t1, start_angle + sweep);
+        Arc::with_ends(self.center, self.radius, start_angle, sweep, start, end)
     }
 
     /// The two pieces on either side of parameter `t`.
@@ -385,6 +379,29 @@ mod tests {
 
     /// The box holds every point of the arc and is tight: arcs starting anywhere (angles
     /// beyond ±2π too), of every sweep, both ways.
+    #[test]
+    fn subsegment_keeps_the_arcs_own_ends_and_computes_the_others() {
+        let a = Arc::from_center(
+            Point::new(1.0, 2.0),
+            Point::new(4.0, 2.0),
+            Point::new(1.0, -1.0),
+            true,
+        );
+        let (head, tail) = a.split_at(0.25);
+        assert_eq!(head.start(), a.start());
+        assert_eq!(tail.end(), a.end());
+        assert_eq!(head.end(), tail.start());
+        assert_eq!(head.end(), a.point_at_angle(a.angle_at(0.25)));
+        let mid = a.subsegment(0.25, 0.75);
+        assert_eq!(mid.start(), a.point_at_angle(a.angle_at(0.25)));
+        assert_eq!(mid.end(), a.point_at_angle(a.angle_at(0.75)));
+        assert!((mid.sweep() - a.sweep() / 2.0).abs() < 1e-15);
+        // A whole circle's whole piece closes on itself.
+        let c = Arc::circle(Point::new(0.0, 0.0), 2.0);
+        let whole = c.subsegment(0.0, 1.0);
+        assert_eq!(whole.start(), whole.end());
+    }
+
     #[test]
     fn bbox_is_the_hull_of_the_arc() {
         for i in 0..40 {
