@@ -377,8 +377,8 @@ mod tests {
         assert_eq!(full.bbox().width(), 4.0);
     }
 
-    /// The box holds every point of the arc and is tight: arcs starting anywhere (angles
-    /// beyond ±2π too), of every sweep, both ways.
+    /// A piece's ends at 0 and 1 are the arc's own exactly; the others are the points at
+    /// their angles.
     #[test]
     fn subsegment_keeps_the_arcs_own_ends_and_computes_the_others() {
         let a = Arc::from_center(
@@ -402,6 +402,8 @@ mod tests {
         assert_eq!(whole.start(), whole.end());
     }
 
+    /// The box holds every point of the arc and is tight: arcs starting anywhere (angles
+    /// beyond ±2π too), of every sweep, both ways.
     #[test]
     fn bbox_is_the_hull_of_the_arc() {
         for i in 0..40 {

@@ -227,9 +227,8 @@ fn interior_candidates(arc: &Arc, other: &Segment) -> [Option<Point>; 2] {
 mod tests {
     use super::*;
 
-    /// The shortcut through the ends gives the exact distance's answer on lines and arcs of
-    /// every kind against each other, at distances either side of each pair's.
-
+    /// The circle's box holds the arc's box, for arcs of every sweep both ways, far from the
+    /// origin too.
     #[test]
     fn hull_box_holds_the_arcs_box() {
         for k in 0..200 {
@@ -241,6 +240,9 @@ mod tests {
             assert!(hull.contains(own.min) && hull.contains(own.max), "{arc:?}");
         }
     }
+
+    /// The shortcut through the ends gives the exact distance's answer on lines and arcs of
+    /// every kind against each other, at distances either side of each pair's.
     #[test]
     fn nearer_than_by_the_ends_agrees_with_the_exact_distance() {
         let mut segments = Vec::new();

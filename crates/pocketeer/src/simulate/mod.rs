@@ -7,7 +7,8 @@
 //! reach, rapids into stock, plunges, and the wall-following length by milling side.
 //! `gcode.rs` reads, `polygon.rs` sweeps the tool, `history.rs` remembers what each move
 //! found cut, `side.rs` measures climb against conventional, `engagement.rs` how much of the
-//! tool meets the stock (`tool_circle.rs` which directions round it were swept), `classify.rs` what each move does (on the height map of `zmap.rs`).
+//! tool meets the stock (`tool_circle.rs` which directions round it were swept),
+//! `classify.rs` what each move does (on the height map of `zmap.rs`).
 
 pub mod check;
 pub mod classify;
