@@ -144,8 +144,12 @@ impl Gap<'_> {
     /// How well `p` is covered: positive when the tool already removes everything within that
     /// distance of `p`.
     fn margin(&self, p: Point) -> f64 {
-        let by_here = self.radius - self.here.distance(p);
-        let by_below = self.radius - self.below.distance(p);
+        // A loop farther than the radius covers nothing there: its term is not positive, and
+        // only a positive margin proves anything (see `normal_clean`).
+        let by = |loops: &SegmentIndex| {
+            (loops.distance_below(p, self.radius)).map_or(f64::NEG_INFINITY, |d| self.radius - d)
+        };
+        let (by_here, by_below) = (by(&self.here), by(&self.below));
         let inside_below = self.pocket.distance(p) - self.next_distance;
         by_here.max(by_below).max(inside_below)
     }

@@ -332,6 +332,26 @@ impl SegmentIndex {
             .map(|(i, d)| (super::closest_point(&self.segments[i], p), d))
     }
 
+    /// Distance from `p` to the nearest segment when it is below `limit`: a search for what
+    /// lies near looks only into the boxes near.
+    ///
+    /// ```
+    /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
+    /// let p = Point::new;
+    /// let index = SegmentIndex::new(&[Segment::Line(Line::new(p(0.0, 0.0), p(10.0, 0.0)))]);
+    /// assert_eq!(index.distance_below(p(4.0, 3.0), 5.0), Some(3.0));
+    /// assert_eq!(index.distance_below(p(4.0, 3.0), 3.0), None);
+    /// ```
+    pub fn distance_below(&self, p: Point, limit: f64) -> Option<f64> {
+        self.tree
+            .nearest_below(
+                |b| b.distance_sq(p).sqrt(),
+                |i| distance_from_segment(&self.segments[i], p),
+                limit,
+            )
+            .map(|(_, d)| d)
+    }
+
     /// Distance from `p` to the nearest segment (infinite when there is none).
     pub fn distance(&self, p: Point) -> f64 {
         self.tree
