@@ -4,6 +4,7 @@
 use super::{
     distance_from_segment, segment_distance, segments_nearer_than, Aabb, PackedTree, Point, Segment,
 };
+use std::cell::Cell;
 
 /// Boxes indexed by their position in the slice they were built from.
 ///
@@ -350,6 +351,39 @@ impl SegmentIndex {
                 limit,
             )
             .map(|(_, d)| d)
+    }
+
+    /// [`SegmentIndex::distance_below`], starting from the segment `hint` holds (the nearest
+    /// to the point last asked about, a guess for a point near it) and leaving there the one
+    /// nearest to `p`: the search then looks only into boxes nearer than that segment, a few
+    /// where points are asked about one after another along a path.
+    ///
+    /// ```
+    /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
+    /// use std::cell::Cell;
+    /// let p = Point::new;
+    /// let line = |x0, y0, x1, y1| Segment::Line(Line::new(p(x0, y0), p(x1, y1)));
+    /// let index = SegmentIndex::new(&[line(0.0, 0.0, 10.0, 0.0), line(0.0, 5.0, 10.0, 5.0)]);
+    /// let hint = Cell::new(0);
+    /// assert_eq!(index.distance_hinted(p(4.0, 4.0), 5.0, &hint), Some(1.0));
+    /// assert_eq!(hint.get(), 1);
+    /// assert_eq!(index.distance_hinted(p(4.0, 1.0), 5.0, &hint), Some(1.0));
+    /// assert_eq!(hint.get(), 0);
+    /// ```
+    pub fn distance_hinted(&self, p: Point, limit: f64, hint: &Cell<usize>) -> Option<f64> {
+        let guess = (self.segments.get(hint.get())).map_or(f64::INFINITY, |s| distance_from_segment(s, p));
+        let found = self.tree.nearest_below(
+            |b| b.distance_sq(p).sqrt(),
+            |i| distance_from_segment(&self.segments[i], p),
+            limit.min(guess),
+        );
+        match found {
+            Some((i, d)) => {
+                hint.set(i);
+                Some(d)
+            }
+            None => (guess < limit).then_some(guess),
+        }
     }
 
     /// Distance from `p` to the nearest segment (infinite when there is none).

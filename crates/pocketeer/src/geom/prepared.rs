@@ -115,6 +115,13 @@ impl PreparedPocket {
         self.walls.distance(p)
     }
 
+    /// [`PreparedPocket::distance`] for points asked about one after another along a path,
+    /// starting from the wall `hint` holds and leaving the nearest there (see
+    /// [`SegmentIndex::distance_hinted`]).
+    pub fn distance_hinted(&self, p: Point, hint: &std::cell::Cell<usize>) -> f64 {
+        (self.walls.distance_hinted(p, f64::INFINITY, hint)).unwrap_or(f64::INFINITY)
+    }
+
     /// The walls' and islands' segments whose boxes meet `b`: a search confined to `b` tests
     /// its moves against these alone.
     pub fn walls_meeting(&self, b: &Aabb) -> impl Iterator<Item = &Segment> + '_ {
