@@ -6,7 +6,7 @@
 //! deceleration and settling of going up, across and down again that lengths over rates leave
 //! out, and that makes many short hops dearer than one longer feed move.
 
-use crate::toolpath::{Feed, Move, Toolpath};
+use crate::toolpath::{Feed, Move, Point3, Toolpath};
 
 /// The fixed cost of one retract, seconds, unless told: an estimate (set it for the machine
 /// with `--retract-time`). A rapid of a few millimetres at 5000 mm/min and an acceleration of
@@ -110,8 +110,23 @@ impl TimeModel {
     /// assert!((t.rapid - 8.0 * 60.0 / 5000.0).abs() < 1e-9 && t.retracts == 0.5);
     /// ```
     pub fn toolpath(&self, path: &Toolpath) -> MachiningTime {
+        self.moves(path.counted_moves())
+    }
+
+    /// The time of `moves`, each with where it starts, every one counted (see
+    /// [`TimeModel::toolpath`] for a whole program, whose first rapid is not).
+    ///
+    /// ```
+    /// use pocketeer::machining_time::TimeModel;
+    /// use pocketeer::toolpath::{Move, Point3};
+    /// let m = TimeModel { feed: 1000.0, plunge_feed: 300.0, rapid: 5000.0, per_retract: 0.5 };
+    /// let up = Move::Rapid { to: Point3::new(0.0, 0.0, 5.0) };
+    /// let t = m.moves([(Point3::new(0.0, 0.0, -3.0), &up)]);
+    /// assert!((t.rapid - 8.0 * 60.0 / 5000.0).abs() < 1e-9 && t.retracts == 0.5);
+    /// ```
+    pub fn moves<'a>(&self, moves: impl IntoIterator<Item = (Point3, &'a Move)>) -> MachiningTime {
         let mut t = MachiningTime::default();
-        for (at, m) in path.counted_moves() {
+        for (at, m) in moves {
             let len = m.length(at);
             match m {
                 Move::Rapid { to } => {

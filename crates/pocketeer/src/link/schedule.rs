@@ -64,7 +64,7 @@ impl<'a> Linker<'a> {
             let m = ready.swap_remove(k);
             let Some(Visit {
                 part,
-                mut after,
+                after,
                 along,
                 cut_any,
                 ..
@@ -80,8 +80,7 @@ impl<'a> Linker<'a> {
                 distance: plan.parts[part].distance,
                 cut: &cut,
             };
-            after.extend(self.cut_part(part, !cut_any, reach, &along));
-            self.cut_small_leaves(part, after);
+            self.cut_part_timed(part, !cut_any, reach, &along, after);
             if let Some(parent) = visits.get_mut(waiting_for[m]).and_then(Option::as_mut) {
                 parent.before.retain(|&c| c != m);
                 parent.cut_any = true;

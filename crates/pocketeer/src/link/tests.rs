@@ -563,6 +563,41 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
 }
 
 #[test]
+fn clean_up_paths_are_cut_the_faster_way_part_by_part() {
+    // Excursions from the loops save time on the two-island rectangle at 70 % stepover; on an
+    // island grid at 85 % the rows of short clean-up paths between the islands are cut
+    // faster one after another, as paths of their own. Either way the program takes the
+    // least time of the two.
+    let grid = Pocket {
+        boundary: rect(0.0, 0.0, 100.0, 80.0),
+        islands: (0..12)
+            .map(|k| {
+                let c = Point::new(20.0 + 20.0 * (k % 4) as f64, 20.0 + 20.0 * (k / 4) as f64);
+                Contour::new(vec![Segment::Arc(Arc::circle(c, 5.0))]).reversed()
+            })
+            .collect(),
+    };
+    let mut slower = [0, 0];
+    for (pocket, stepover) in [(two_islands(120.0, 60.0, [35.0, 85.0]), 4.2), (grid, 5.1)] {
+        let (plan, prepared) = planned(&pocket, stepover);
+        let seconds = |hosting| {
+            let p = params(Entry::Helix);
+            let job = [(&prepared, &plan)];
+            let l = link_hosting(&job, &p, &Tolerance::default(), &crate::progress::Silent, hosting).unwrap();
+            assert_no_gouge(&l.toolpath, &prepared);
+            p.time.toolpath(&l.toolpath).total()
+        };
+        let (timed, hosted, own) = (seconds(None), seconds(Some(true)), seconds(Some(false)));
+        assert!(
+            timed <= hosted.min(own) + 1e-9,
+            "{timed} s, {hosted} s hosted, {own} s as their own"
+        );
+        slower[usize::from(hosted > own)] += 1;
+    }
+    assert_eq!(slower, [1, 1], "each way the faster on one of the two");
+}
+
+#[test]
 fn neighbouring_branches_are_linked_by_a_short_slot_instead_of_a_new_entry() {
     // A 3 x 3 grid of 8 mm holes at a 20 mm pitch: the levels split into a branch in every cell
     // between four holes, each a leaf to enter. Neighbouring cells see each other through the
