@@ -271,6 +271,7 @@ fn link_hosting(
         uncut: UncutLeaves::default(),
         host_cleanups: hosting.unwrap_or(true),
         hosting,
+        hosted: 0,
     };
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
@@ -346,6 +347,9 @@ struct Linker<'a> {
     host_cleanups: bool,
     /// The way clean-up paths are cut when the caller fixed it, else none.
     hosting: Option<bool>,
+    /// How many clean-up paths have been given a loop to be cut from (see
+    /// [`Linker::host_of`]).
+    hosted: usize,
 }
 
 /// Where the linking was before a part was cut, to try cutting it another way (see
@@ -457,8 +461,14 @@ impl<'a> Linker<'a> {
         let mut loose = Vec::new();
         for c in &part.cleanups {
             match self.host_of(c, &outer.0, &items) {
-                Some(0) => outer.1.push(Excursion::Cleanup(c.clone())),
-                Some(k) => items[k - 1].1.push(Excursion::Cleanup(c.clone())),
+                Some(0) => {
+                    self.hosted += 1;
+                    outer.1.push(Excursion::Cleanup(c.clone()))
+                }
+                Some(k) => {
+                    self.hosted += 1;
+                    items[k - 1].1.push(Excursion::Cleanup(c.clone()))
+                }
                 None => loose.push((c.clone(), Vec::new())),
             }
         }
@@ -530,16 +540,20 @@ impl<'a> Linker<'a> {
         if !open || self.hosting.is_some() {
             return cut(self, after);
         }
-        let mark = self.mark();
-        // On the way, told to nobody: the steps are told as the other way is cut.
-        let progress = std::mem::replace(&mut self.progress, &crate::progress::Silent);
+        let (mark, before) = (self.mark(), self.hosted);
         cut(self, after.clone());
-        self.progress = progress;
+        if self.hosted == before {
+            // None was cut on the way: the other way is this one.
+            return;
+        }
         let hosted = self.seconds_since(&mark);
         let tried = self.back_to(&mark);
+        // Told to nobody: the steps, one a path either way, were told as the first way was cut.
+        let progress = std::mem::replace(&mut self.progress, &crate::progress::Silent);
         self.host_cleanups = false;
         cut(self, after);
         self.host_cleanups = true;
+        self.progress = progress;
         if hosted <= self.seconds_since(&mark) {
             self.back_to(&mark);
             self.path.moves.extend(tried.moves);
