@@ -524,12 +524,13 @@ impl<'a> Linker<'a> {
 
     /// Cuts the part `n` ([`Linker::cut_part`]) and the leaves that wait for it
     /// ([`Linker::cut_small_leaves`], with `after`), its clean-up paths cut on the way round
-    /// its loops where they can be, and, when any is open (such a path may be), again with
+    /// its loops where they can be (see [`Linker::host_of`]); when that cut any, again with
     /// each cut as a path of its own, keeping the way that takes less time. Neither is
-    /// faster everywhere: a clean-up path beside a loop costs a step out and back (on the 8-island
-    /// rectangle at 70 % stepover the excursions saved 23 s of 403), but a row of short
-    /// ones is cut in one pass from each to the next (the 10 × 6 island grid at 85 %: 589 s as
-    /// paths of their own, 650 s as excursions).
+    /// faster everywhere: a clean-up path beside a loop costs a step out and back (on the
+    /// 8-island rectangle at 70 % stepover the excursions saved 23 s of 403), but a row of
+    /// short ones is cut in one pass from each to the next (the 10 × 6 island grid at 85 %:
+    /// 589 s as paths of their own, 650 s as excursions). What the way chosen does to the
+    /// link to the next part is not counted.
     fn cut_part_timed(&mut self, n: usize, first: bool, reach: Reach, along: &[usize], after: Vec<usize>) {
         let plan = self.plan();
         let open = plan.allowance == 0.0 && plan.parts[n].cleanups.iter().any(|c| !c.closed);
