@@ -223,9 +223,26 @@ impl Toolpath {
     /// only brings the tool from wherever it is to the start of the program (`start` is a
     /// stand-in for that unknown place).
     pub fn counted_moves(&self) -> impl Iterator<Item = (Point3, &Move)> + '_ {
-        let skip = usize::from(matches!(self.moves.first(), Some(Move::Rapid { .. })));
-        let first = if skip == 1 { self.moves[0].to() } else { self.start };
-        self.moves[skip..].iter().scan(first, |at, m| {
+        self.moves_from(usize::from(matches!(
+            self.moves.first(),
+            Some(Move::Rapid { .. })
+        )))
+    }
+
+    /// The moves from the `k`-th on, each with where it starts (where the one before ends, or
+    /// `start` for the first).
+    ///
+    /// ```
+    /// use pocketeer::toolpath::{Feed, Point3, Toolpath};
+    /// let mut path = Toolpath::new(Point3::new(0.0, 0.0, 5.0));
+    /// path.rapid(Point3::new(10.0, 0.0, 5.0));
+    /// path.line(Point3::new(10.0, 0.0, -3.0), Feed::Plunge);
+    /// let (from, m) = path.moves_from(1).next().unwrap();
+    /// assert_eq!((from, m.to()), (Point3::new(10.0, 0.0, 5.0), Point3::new(10.0, 0.0, -3.0)));
+    /// ```
+    pub fn moves_from(&self, k: usize) -> impl Iterator<Item = (Point3, &Move)> + '_ {
+        let first = k.checked_sub(1).map_or(self.start, |j| self.moves[j].to());
+        self.moves[k..].iter().scan(first, |at, m| {
             let from = *at;
             *at = m.to();
             Some((from, m))

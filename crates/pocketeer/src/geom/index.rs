@@ -333,30 +333,11 @@ impl SegmentIndex {
             .map(|(i, d)| (super::closest_point(&self.segments[i], p), d))
     }
 
-    /// Distance from `p` to the nearest segment when it is below `limit`: a search for what
-    /// lies near looks only into the boxes near.
-    ///
-    /// ```
-    /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
-    /// let p = Point::new;
-    /// let index = SegmentIndex::new(&[Segment::Line(Line::new(p(0.0, 0.0), p(10.0, 0.0)))]);
-    /// assert_eq!(index.distance_below(p(4.0, 3.0), 5.0), Some(3.0));
-    /// assert_eq!(index.distance_below(p(4.0, 3.0), 3.0), None);
-    /// ```
-    pub fn distance_below(&self, p: Point, limit: f64) -> Option<f64> {
-        self.tree
-            .nearest_below(
-                |b| b.distance_sq(p).sqrt(),
-                |i| distance_from_segment(&self.segments[i], p),
-                limit,
-            )
-            .map(|(_, d)| d)
-    }
-
-    /// [`SegmentIndex::distance_below`], starting from the segment `hint` holds (the nearest
-    /// to the point last asked about, a guess for a point near it) and leaving there the one
-    /// nearest to `p`: the search then looks only into boxes nearer than that segment, a few
-    /// where points are asked about one after another along a path.
+    /// Distance from `p` to the nearest segment when it is below `limit`, the search starting
+    /// from the segment `hint` holds (the nearest to the point last asked about, a guess for a
+    /// point near it) and leaving there the one nearest to `p`: it looks only into boxes
+    /// nearer than the limit and that segment, a few where points are asked about one after
+    /// another along a path.
     ///
     /// ```
     /// use pocketeer::geom::{Line, Point, Segment, SegmentIndex};
@@ -369,6 +350,7 @@ impl SegmentIndex {
     /// assert_eq!(hint.get(), 1);
     /// assert_eq!(index.distance_hinted(p(4.0, 1.0), 5.0, &hint), Some(1.0));
     /// assert_eq!(hint.get(), 0);
+    /// assert_eq!(index.distance_hinted(p(4.0, 1.0), 1.0, &hint), None);
     /// ```
     pub fn distance_hinted(&self, p: Point, limit: f64, hint: &Cell<usize>) -> Option<f64> {
         let guess = (self.segments.get(hint.get())).map_or(f64::INFINITY, |s| distance_from_segment(s, p));

@@ -269,7 +269,6 @@ fn link_hosting(
         cut_early: std::collections::HashSet::new(),
         enclosed: std::collections::HashMap::new(),
         uncut: UncutLeaves::default(),
-        host_cleanups: hosting.unwrap_or(true),
         hosting,
         hosted: 0,
     };
@@ -342,10 +341,9 @@ struct Linker<'a> {
     /// The plain leaves of nested loops of the part being cut that wait for its paths (see
     /// [`Linker::is_plain_leaf`]): their stock is not cut, and no link at depth crosses them.
     uncut: UncutLeaves,
-    /// Whether clean-up paths may be cut on the way round a loop (see [`Linker::host_of`]);
-    /// [`Linker::cut_part_timed`] tries a part both ways.
-    host_cleanups: bool,
-    /// The way clean-up paths are cut when the caller fixed it, else none.
+    /// Whether clean-up paths are cut on the way round a loop where they can be (see
+    /// [`Linker::host_of`]): fixed by the caller, or none, and [`Linker::cut_part_timed`]
+    /// tries a part both ways (setting it to `false` for the second).
     hosting: Option<bool>,
     /// How many clean-up paths have been given a loop to be cut from (see
     /// [`Linker::host_of`]).
@@ -551,9 +549,9 @@ impl<'a> Linker<'a> {
         let tried = self.back_to(&mark);
         // Told to nobody: the steps, one a path either way, were told as the first way was cut.
         let progress = std::mem::replace(&mut self.progress, &crate::progress::Silent);
-        self.host_cleanups = false;
+        self.hosting = Some(false);
         cut(self, after);
-        self.host_cleanups = true;
+        self.hosting = None;
         self.progress = progress;
         if hosted <= self.seconds_since(&mark) {
             self.back_to(&mark);
@@ -577,13 +575,7 @@ impl<'a> Linker<'a> {
 
     /// The time of the moves made since `mark`, in the time model the choices are made in.
     fn seconds_since(&self, mark: &Mark) -> f64 {
-        let start = (mark.moves.checked_sub(1)).map_or(self.path.start, |k| self.path.moves[k].to());
-        let moves = self.path.moves[mark.moves..].iter().scan(start, |at, m| {
-            let from = *at;
-            *at = m.to();
-            Some((from, m))
-        });
-        self.params.time.moves(moves).total()
+        self.params.time.moves(self.path.moves_from(mark.moves)).total()
     }
 
     /// Takes back what was done since `mark`, returning it.
@@ -609,7 +601,7 @@ impl<'a> Linker<'a> {
     /// 3.6 s faster and the 90 % one 5.8 s slower), and for the finishing loop (it has leads).
     fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<usize> {
         let r = self.plan().tool_radius;
-        if c.closed || self.plan().allowance > 0.0 || !self.host_cleanups {
+        if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
             return None;
         }
         let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
