@@ -57,6 +57,16 @@ const MAX_LOCAL_WALLS: usize = 256;
 /// [`next_item`]); beyond it, the nearest.
 const MAX_TOURED_ITEMS: usize = 32;
 
+/// How far from a loop a clean-up path may lie and still be cut on the loop's way round, in
+/// tool radii: both its ends within this of the loop's point nearest to it, and the tool
+/// straight back to that point from its far end when that is as near (see
+/// [`Linker::host_of`]). Two, a tool diameter: the move out and back each cut at most a
+/// slot as long as the tool is wide. Measured on the linking bench, where the faster of the
+/// two ways of cutting a part is kept (see [`Linker::cut_part_timed`]): within one radius,
+/// the 90 % rectangle took 375.5 s; within two, 363.6 s (its share of cutting above 150°
+/// 23.0 -> 22.0 %, p95 the same); three or more gained 1 s more; no other drawing slower.
+const HOST_REACH_RADII: f64 = 2.0;
+
 /// Spacing of the lattice a way round what is in the way is searched on, in tool radii: fine
 /// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
 const DETOUR_STEP_RADII: f64 = 0.25;
@@ -271,6 +281,7 @@ fn link_hosting(
         uncut: UncutLeaves::default(),
         hosting,
         hosted: 0,
+        helices: Vec::new(),
     };
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
@@ -289,6 +300,7 @@ fn link_hosting(
         let (pocket, plan) = jobs[j];
         linker.pocket = Some(pocket);
         if !linker.plan.is_some_and(|p| std::ptr::eq(p, plan)) {
+            linker.helices.clear();
             linker.boxes = plan.parts.iter().map(|p| p.outer.bbox()).collect();
             linker.path_boxes = plan.parts.iter().map(|_| OnceCell::new()).collect();
         }
@@ -348,6 +360,11 @@ struct Linker<'a> {
     /// How many clean-up paths have been given a loop to be cut from (see
     /// [`Linker::host_of`]).
     hosted: usize,
+    /// The helices found for the entries into the plan's parts (see [`Linker::find_helix`]):
+    /// [`Linker::cut_part_timed`] cuts a part twice, every pass enters the same parts, and a
+    /// helix looked for about all of a large part's paths took 290 ms of the 300-hole plate's
+    /// job at 85 % stepover, each time.
+    helices: Vec<FoundHelix>,
 }
 
 /// Where the linking was before a part was cut, to try cutting it another way (see
@@ -358,6 +375,16 @@ struct Mark {
     down: bool,
     last: (Vec<Segment>, bool),
     cut_early: std::collections::HashSet<(usize, usize)>,
+}
+
+/// A helix looked for (see [`Linker::find_helix`]) and what it depends on besides the plan:
+/// the part, the walk it leads to (its start, end and number of segments) and the leaves not
+/// cut yet that the way from the helix may not cross.
+struct FoundHelix {
+    part: usize,
+    walk: (Point, Point, usize),
+    uncut: (Vec<usize>, Vec<bool>),
+    helix: Option<Helix>,
 }
 
 /// What cutting a part one way added and left, to be put back if that way is kept.
@@ -593,14 +620,16 @@ impl<'a> Linker<'a> {
     }
 
     /// The loop (0: `outer`, k: the k-th of `holes`) that cuts the clean-up path `c` on its
-    /// way round (see [`Linker::excursions`]): the nearest whose tool disc, at its point nearest
-    /// to an end of `c`, holds both ends, with nothing in the way to either, so that the tool
-    /// goes out and back straight; none when no loop passes so near (a longer path is cut
-    /// from where the tool is, as its own item: going back along it doubled the clean-up on
-    /// the 90 % rectangle; allowed for paths up to a tool radius long, it made the 70 % one
-    /// 3.6 s faster and the 90 % one 5.8 s slower), and for the finishing loop (it has leads).
+    /// way round (see [`Linker::excursions`]): the nearest whose point nearest to an end of
+    /// `c` has both ends within [`HOST_REACH_RADII`] tool radii, with nothing in the way to
+    /// either, so that the tool goes out straight; none when no loop passes so near (a longer
+    /// path is cut from where the tool is, as its own item: going back along it doubled the
+    /// clean-up on the 90 % rectangle; allowed for paths up to a tool radius long, before the
+    /// faster way was chosen part by part, it made the 70 % one 3.6 s faster and the 90 % one
+    /// 5.8 s slower), and for the finishing loop (it has leads).
     fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<usize> {
         let r = self.plan().tool_radius;
+        let reach = HOST_REACH_RADII * r;
         if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
             return None;
         }
@@ -613,8 +642,8 @@ impl<'a> Linker<'a> {
                 let d = p.distance(end);
                 let both = ends
                     .iter()
-                    .all(|&e| p.distance(e) <= r && self.stays_inside(p, e, r));
-                if d <= r && best.is_none_or(|(_, b)| d < b) && both {
+                    .all(|&e| p.distance(e) <= reach && self.stays_inside(p, e, r));
+                if d <= reach && best.is_none_or(|(_, b)| d < b) && both {
                     best = Some((k, d));
                 }
             }
@@ -723,9 +752,9 @@ impl<'a> Linker<'a> {
     }
 
     /// Follows the walk `segments` of a loop, cutting each of `cleanups` on the way: where the
-    /// walk comes nearest to the clean-up path's nearer end, out to that end (inside the tool's
-    /// disc there, cut at that moment), along the path, and back to the walk straight from its
-    /// far end where nothing is in the way, else back along it. A closed path among them is a
+    /// walk comes nearest to the clean-up path's nearer end, out to that end (within
+    /// [`HOST_REACH_RADII`] tool radii), along the path, and back to the walk straight from its
+    /// far end where that is as near and nothing is in the way, else back along it. A closed path among them is a
     /// leaf's loop (see [`Linker::cut_part`]): out from the walk's point nearest to it, round
     /// it from there and straight back. A clean-up path lies between a
     /// loop and the loops inside it, all of them cut when the walk passes: it is reached where
@@ -822,7 +851,8 @@ impl<'a> Linker<'a> {
                     }
                     None => {
                         let far = self.here();
-                        if !(far.distance(p) <= r && self.stays_inside(far, p, r)) {
+                        let reach = HOST_REACH_RADII * r;
+                        if !(far.distance(p) <= reach && self.stays_inside(far, p, r)) {
                             let back: Vec<Segment> = path.iter().rev().map(Segment::reversed).collect();
                             walk::follow(&mut self.path, &back, self.z);
                         }
@@ -1178,12 +1208,36 @@ impl<'a> Linker<'a> {
         None
     }
 
+    /// [`Linker::find_helix`], looked for once for each part, walk and state of the leaves not
+    /// cut yet (see [`Linker::helices`]).
+    fn find_helix_once(&mut self, part: usize, segments: &[Segment]) -> Option<Helix> {
+        let walk = (
+            segments[0].start(),
+            segments[segments.len() - 1].end(),
+            segments.len(),
+        );
+        let same = |f: &FoundHelix| {
+            f.part == part && f.walk == walk && f.uncut.0 == self.uncut.parts && f.uncut.1 == self.uncut.cut
+        };
+        if let Some(found) = self.helices.iter().find(|f| same(f)) {
+            return found.helix;
+        }
+        let helix = self.find_helix(part, segments);
+        self.helices.push(FoundHelix {
+            part,
+            walk,
+            uncut: (self.uncut.parts.clone(), self.uncut.cut.clone()),
+            helix,
+        });
+        helix
+    }
+
     /// Enters the stock to start `segments` (a walk of the part `part`) at the pass depth.
     fn enter(&mut self, part: usize, segments: &[Segment]) {
         let (p, r) = (self.params, self.plan().tool_radius);
         let q = segments[0].start();
         if p.entry == Entry::Helix {
-            if let Some(h) = self.find_helix(part, segments) {
+            if let Some(h) = self.find_helix_once(part, segments) {
                 // The material is outside the helix: on the right when it turns counter-clockwise.
                 let ccw = p.direction == Direction::Climb;
                 let (start, sweep) = entry::helix_start(&h, self.z_top, self.z, p.ramp_angle, ccw, q);
