@@ -519,34 +519,66 @@ fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
 
 #[test]
 fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
-    // At 70 % stepover the levels leave residues between the loops round two islands and the
-    // loops inside them: clean-up paths. Each one whose ends both lie within the tool's disc
-    // at the nearest point of a loop of its part is cut from that loop, out and back, not
-    // reached by a link of its own.
-    let (l, plan, _) = linked_plan(&two_islands(120.0, 60.0, [35.0, 85.0]), 4.2, Entry::Helix);
+    // At 90 % stepover the levels leave residues between the loops round the islands and the
+    // loops inside them: clean-up paths. Each one whose ends both lie within a tool diameter
+    // of the nearest point of a loop of its part is cut from that loop, out and back, not
+    // reached by a link of its own (when that way is chosen: see the next test), also when
+    // one end lies beyond the tool's disc there (before 495456c, cut as its own item). The
+    // linking bench's rectangle with 8 round islands.
+    let island =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 8.0))]).reversed();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 200.0, 120.0),
+        islands: [35.0, 78.0, 121.0, 164.0]
+            .into_iter()
+            .flat_map(|x| [island(x, 35.0), island(x, 85.0)])
+            .collect(),
+    };
+    let (plan, prepared) = planned(&pocket, 5.4);
+    let job = [(&prepared, &plan)];
+    let l = link_hosting(
+        &job,
+        &params(Entry::Helix),
+        &Tolerance::default(),
+        &crate::progress::Silent,
+        Some(true),
+    )
+    .unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    // A tool diameter.
+    let reach = 6.0;
     let on_loop = |part: &Part, p: Point| {
         part.loops()
             .flat_map(|c| &c.segments)
             .any(|s| distance_from_segment(s, p) < 1e-6)
     };
-    let mut beside = 0;
-    for part in &plan.parts {
+    let (mut beside, mut beyond_radius) = (0, 0);
+    // Of the parts with loops round islands: a plain leaf's clean-up paths, and those of the
+    // nested loops of one, are cut after their loops, nearest first (see
+    // `Linker::cut_small_leaves`).
+    for part in plan.parts.iter().filter(|p| !p.holes.is_empty()) {
         for c in &part.cleanups {
             let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
-            let near = part.loops().any(|l| {
-                ends.iter().any(|&e| {
-                    let s = l
-                        .segments
-                        .iter()
-                        .min_by(|a, b| distance_from_segment(a, e).total_cmp(&distance_from_segment(b, e)));
-                    let p = crate::geom::closest_point(s.unwrap(), e);
-                    ends.iter().all(|&f| p.distance(f) <= 3.0 - 1e-6)
+            // Of the nearest points of its loops to either end, the least distance from it to
+            // the farther end.
+            let farther = (part.loops())
+                .flat_map(|l| {
+                    ends.map(|e| {
+                        let s = (l.segments.iter()).min_by(|a, b| {
+                            distance_from_segment(a, e).total_cmp(&distance_from_segment(b, e))
+                        });
+                        let p = crate::geom::closest_point(s.unwrap(), e);
+                        ends.iter().map(|&f| p.distance(f)).fold(0.0, f64::max)
+                    })
                 })
-            });
-            if !near {
+                .fold(f64::INFINITY, f64::min);
+            if farther > reach - 1e-6 {
                 continue;
             }
             beside += 1;
+            if farther > 3.0 {
+                beyond_radius += 1;
+            }
             // The move onto the path comes from a loop of its part.
             let mut at = l.toolpath.start;
             let from_loop = l.toolpath.moves.iter().any(|m| {
@@ -560,6 +592,10 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
         }
     }
     assert!(beside >= 4, "{beside} clean-up paths beside a loop");
+    assert!(
+        beyond_radius >= 4,
+        "{beyond_radius} of them beyond the tool's disc"
+    );
 }
 
 #[test]
