@@ -99,7 +99,7 @@ fn two_circles_cw(cx: f64, cy: f64, r: f64, gap: f64) -> Ring {
 fn drawings() -> Vec<Drawing> {
     let mut out = Vec::new();
     let rect_islands = cases::rounded_with_islands().rings;
-    for s in [0.3, 0.5, 0.7, 0.9] {
+    for s in [0.3, 0.5, 0.6, 0.7, 0.8, 0.9] {
         out.push(Drawing {
             name: format!("rectangle 200x120, 8 round islands, {:.0} %", 100.0 * s),
             pockets: vec![pocket_of(rect_islands.clone())],
