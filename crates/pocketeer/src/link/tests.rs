@@ -60,6 +60,19 @@ fn two_islands(width: f64, height: f64, xs: [f64; 2]) -> Pocket {
 
 /// Every feed move below the stock top keeps the tool centre at least the radius from the
 /// walls (lines exactly, arcs by dense samples).
+/// The linking bench's 200 x 120 rectangle with two rows of four round islands of radius 8.
+fn eight_island_rectangle() -> Pocket {
+    let island =
+        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 8.0))]).reversed();
+    Pocket {
+        boundary: rect(0.0, 0.0, 200.0, 120.0),
+        islands: [35.0, 78.0, 121.0, 164.0]
+            .into_iter()
+            .flat_map(|x| [island(x, 35.0), island(x, 85.0)])
+            .collect(),
+    }
+}
+
 fn assert_no_gouge(path: &Toolpath, prepared: &PreparedPocket) {
     let tol = Tolerance::default();
     let mut at = path.start;
@@ -525,15 +538,7 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
     // reached by a link of its own (when that way is chosen: see the next test), also when
     // one end lies beyond the tool's disc there (before 495456c, cut as its own item). The
     // linking bench's rectangle with 8 round islands.
-    let island =
-        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 8.0))]).reversed();
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 200.0, 120.0),
-        islands: [35.0, 78.0, 121.0, 164.0]
-            .into_iter()
-            .flat_map(|x| [island(x, 35.0), island(x, 85.0)])
-            .collect(),
-    };
+    let pocket = eight_island_rectangle();
     let (plan, prepared) = planned(&pocket, 5.4);
     let job = [(&prepared, &plan)];
     let l = link_hosting(
@@ -902,15 +907,7 @@ fn entries_into_the_branches_of_a_pocket_follow_a_short_tour() {
     // ready branches of the whole tree are one pool, the next entered the first of a short
     // tour over them: before, each branch of the tree was finished before the next, and the
     // tool went from one side to the other and back three times, 80 to 150 mm each.
-    let island =
-        |x: f64, y: f64| Contour::new(vec![Segment::Arc(Arc::circle(Point::new(x, y), 8.0))]).reversed();
-    let pocket = Pocket {
-        boundary: rect(0.0, 0.0, 200.0, 120.0),
-        islands: [35.0, 78.0, 121.0, 164.0]
-            .iter()
-            .flat_map(|&x| [island(x, 35.0), island(x, 85.0)])
-            .collect(),
-    };
+    let pocket = eight_island_rectangle();
     let (l, _) = linked(&pocket, 1.8, Entry::Helix);
     let mut at = l.toolpath.start;
     let mut across = 0.0;
