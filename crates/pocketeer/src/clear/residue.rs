@@ -5,11 +5,10 @@
 //! d_k + δ, g − r ≤ δ ≤ g/2 (see [`path_offset`]). A point p of the gap that the tool misses
 //! is farther than r from L_k, so its distance w to the walls exceeds d_k + r (on the way from
 //! p straight to its nearest wall the distance falls as fast as the tool goes, so L_k is
-//! crossed w − d_k from p): it lies at
-//! r − δ < u < g − δ ≤ r along the normal from a point m of L_h (its foot on the way to the
-//! nearest wall). A tool following L_h near m therefore removes it. So it suffices to cut the
-//! pieces of L_h whose normals, for u in [0, g − δ), pass points not already within r of L_k,
-//! of L_(k+1), or inside level k+1.
+//! crossed w − d_k from p): it lies at r − δ < u < g − δ ≤ r along the normal from a point m
+//! of L_h (its foot on the way to the nearest wall). A tool following L_h near m therefore
+//! removes it. So it suffices to cut the pieces of L_h whose normals, for u in [0, g − δ),
+//! pass points not already within r of L_k, of L_(k+1), or inside level k+1.
 //!
 //! The test runs on short sub-pieces of L_h, each proven clean (every point of its normals
 //! covered with a margin larger than the sub-piece's spread) or split in halves and each half

@@ -486,13 +486,10 @@ impl<'a> Linker<'a> {
         let mut loose = Vec::new();
         for c in &part.cleanups {
             match self.host_of(c, &outer.0, &items) {
-                Some(0) => {
-                    self.hosted += 1;
-                    outer.1.push(Excursion::Cleanup(c.clone()))
-                }
                 Some(k) => {
                     self.hosted += 1;
-                    items[k - 1].1.push(Excursion::Cleanup(c.clone()))
+                    let host = if k == 0 { &mut outer.1 } else { &mut items[k - 1].1 };
+                    host.push(Excursion::Cleanup(c.clone()));
                 }
                 None => loose.push((c.clone(), Vec::new())),
             }
@@ -619,6 +616,12 @@ impl<'a> Linker<'a> {
         tried
     }
 
+    /// How far from its loop a clean-up path cut on the loop's way round may lie, mm (see
+    /// [`HOST_REACH_RADII`]).
+    fn host_reach(&self) -> f64 {
+        HOST_REACH_RADII * self.plan().tool_radius
+    }
+
     /// The loop (0: `outer`, k: the k-th of `holes`) that cuts the clean-up path `c` on its
     /// way round (see [`Linker::excursions`]): the nearest whose point nearest to an end of
     /// `c` has both ends within [`HOST_REACH_RADII`] tool radii, with nothing in the way to
@@ -628,8 +631,7 @@ impl<'a> Linker<'a> {
     /// faster way was chosen part by part, it made the 70 % one 3.6 s faster and the 90 % one
     /// 5.8 s slower), and for the finishing loop (it has leads).
     fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<usize> {
-        let r = self.plan().tool_radius;
-        let reach = HOST_REACH_RADII * r;
+        let (r, reach) = (self.plan().tool_radius, self.host_reach());
         if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
             return None;
         }
@@ -754,9 +756,9 @@ impl<'a> Linker<'a> {
     /// Follows the walk `segments` of a loop, cutting each of `cleanups` on the way: where the
     /// walk comes nearest to the clean-up path's nearer end, out to that end (within
     /// [`HOST_REACH_RADII`] tool radii), along the path, and back to the walk straight from its
-    /// far end where that is as near and nothing is in the way, else back along it. A closed path among them is a
-    /// leaf's loop (see [`Linker::cut_part`]): out from the walk's point nearest to it, round
-    /// it from there and straight back. A clean-up path lies between a
+    /// far end where that is as near and nothing is in the way, else back along it. A closed
+    /// path among them is a leaf's loop (see [`Linker::cut_part`]): out from the walk's point
+    /// nearest to it, round it from there and straight back. A clean-up path lies between a
     /// loop and the loops inside it, all of them cut when the walk passes: it is reached where
     /// the tool is, instead of by a link across the part (on the 8-island rectangle at 70 %
     /// stepover, 112 clean-up paths of 231 mm took 775 mm of links).
@@ -851,8 +853,7 @@ impl<'a> Linker<'a> {
                     }
                     None => {
                         let far = self.here();
-                        let reach = HOST_REACH_RADII * r;
-                        if !(far.distance(p) <= reach && self.stays_inside(far, p, r)) {
+                        if !(far.distance(p) <= self.host_reach() && self.stays_inside(far, p, r)) {
                             let back: Vec<Segment> = path.iter().rev().map(Segment::reversed).collect();
                             walk::follow(&mut self.path, &back, self.z);
                         }
