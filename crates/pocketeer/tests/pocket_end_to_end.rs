@@ -113,6 +113,32 @@ fn rectangle_with_two_round_islands_at_every_stepover_up_to_90_percent() {
 }
 
 #[test]
+fn the_spaces_between_holes_cleared_from_one_spot_each_leave_nothing() {
+    // Holes of 8 mm at a 20 mm pitch, a 6 mm tool at 40 %: what the loops round the holes
+    // leave between four of them is cut from one spot in its middle, not by a loop (and at
+    // 30 % and 50 %, where the loops leave more or less there).
+    let holes = (0..16)
+        .map(|k| circle_cw(10.0 + 20.0 * (k % 4) as f64, 10.0 + 20.0 * (k / 4) as f64, 4.0))
+        .collect();
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 80.0, 80.0),
+        islands: holes,
+    };
+    for percent in [30.0, 40.0, 50.0] {
+        let o = run(
+            std::slice::from_ref(&pocket),
+            6.0,
+            6.0 * percent / 100.0,
+            2.0,
+            Entry::Helix,
+            Dialect::Grbl,
+        );
+        eprintln!("{percent}%: tested {}", o.tested);
+        assert_clean(&o, 2.0);
+    }
+}
+
+#[test]
 fn seven_point_star_at_80_percent() {
     let pocket = Pocket {
         boundary: star(7, 50.0, 22.0),

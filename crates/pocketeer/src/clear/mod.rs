@@ -6,7 +6,7 @@
 //! [`ClearPlan`], the tree of [`Part`]s (one connected piece of one level: an outer loop and
 //! the loops around the islands inside it) with their clean-up [`Path`]s; the linker turns it
 //! into moves. `levels.rs` picks the distances, `tree.rs` nests the loops, `residue.rs` finds
-//! what the levels leave between them.
+//! what the levels leave between them, `spots.rs` clears small leaves from one spot each.
 //!
 //! Why the levels and the clean-up paths leave nothing: a point p of the region whose distance
 //! to the walls is t, with d_k ≤ t < d_(k+1), lies t − d_k from the loop at level k along the
@@ -18,6 +18,7 @@
 mod levels;
 mod residue;
 pub mod rest;
+mod spots;
 mod tree;
 
 use crate::geom::Pocket;
@@ -112,12 +113,22 @@ pub struct Part {
     /// Paths between this part and its children that must also be cut to leave nothing
     /// (empty whenever the stepover is at most the tool radius).
     pub cleanups: Vec<Path>,
+    /// Short paths through the spots from which the tool clears what small leaves of this
+    /// part would have, in their place (see [`plan_pocket`]); each lies within a leaf's loop,
+    /// a stepover or so inside this part's loops, and is cut from the last of them passing
+    /// near it.
+    pub spots: Vec<Path>,
 }
 
 impl Part {
     /// The outer loop, then the loops around islands.
     pub fn loops(&self) -> impl Iterator<Item = &Contour> {
         std::iter::once(&self.outer).chain(&self.holes)
+    }
+
+    /// The clean-up paths, then the spots: what the part cuts besides its loops.
+    pub fn paths(&self) -> impl Iterator<Item = &Path> {
+        self.cleanups.iter().chain(&self.spots)
     }
 }
 
@@ -139,11 +150,11 @@ pub struct ClearPlan {
 }
 
 impl ClearPlan {
-    /// Number of loops to cut, clean-up paths included.
+    /// Number of loops to cut, clean-up paths and spots included.
     pub fn loop_count(&self) -> usize {
         self.parts
             .iter()
-            .map(|n| 1 + n.holes.len() + n.cleanups.len())
+            .map(|n| 1 + n.holes.len() + n.cleanups.len() + n.spots.len())
             .sum()
     }
 }
@@ -151,7 +162,9 @@ impl ClearPlan {
 /// Plans the clearing of `pocket`: levels at the tool radius (a finishing loop when there is an
 /// allowance), then at r + allowance + k·stepover until nothing is left, each from the
 /// original region, arranged in a tree, with clean-up paths where the stepover exceeds the
-/// tool radius. An empty plan means the tool fits nowhere in the pocket.
+/// tool radius, and small leaves among siblings cut from one spot (or not at all where their
+/// parent's loops clear them) where it does not. An empty plan means the tool fits nowhere in
+/// the pocket.
 ///
 /// ```
 /// use pocketeer::clear::{plan_pocket, ClearParams};
@@ -189,6 +202,7 @@ pub fn plan_prepared(
     plan.allowance = params.allowance;
     plan.tool_radius = params.tool_radius;
     residue::add_cleanups(&mut plan, pocket, &sources, params, tol)?;
+    spots::clear_leaves_from_spots(&mut plan, params, tol);
     Ok(plan)
 }
 

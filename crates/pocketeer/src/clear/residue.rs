@@ -34,7 +34,7 @@ const FINEST_SPLITS: u32 = 3;
 
 /// How much nearer than the tool radius a clean-up path's tool reaches the farthest point it
 /// answers for, in tool radii (see [`path_offset`]): room for rounding.
-const REACH_MARGIN_RADII: f64 = 0.05;
+pub(super) const REACH_MARGIN_RADII: f64 = 0.05;
 
 /// Where the clean-up paths of a gap `g` wide (r < g < 2r) lie, beyond the loops of the level
 /// outside it: as near to them as lets the tool reach every point the paths answer for,

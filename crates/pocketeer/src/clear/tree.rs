@@ -34,6 +34,7 @@ pub fn build(levels: Vec<Vec<Contour>>, distances: &[f64]) -> ClearPlan {
                 children: Vec::new(),
                 parent,
                 cleanups: Vec::new(),
+                spots: Vec::new(),
             });
             current.push(id);
         }

@@ -6,6 +6,7 @@ mod arc;
 mod cluster;
 mod contour;
 pub mod distance;
+mod enclosing;
 mod index;
 pub mod intersect;
 mod line;
@@ -25,6 +26,7 @@ pub use contour::{bbox_of, is_convex, signed_area, winding_number, Contour, Wind
 pub use distance::{
     closest_param, closest_point, distance_from_segment, segment_distance, segments_nearer_than,
 };
+pub use enclosing::{enclosing_circle, farthest_from_segment, outline_points};
 pub use index::{
     box_pairs, box_pairs_unsorted, for_each_overlapping_pair, overlapping_pairs, BoxIndex, SegmentIndex,
     Stopped,

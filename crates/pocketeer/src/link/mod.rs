@@ -444,7 +444,7 @@ impl<'a> Linker<'a> {
             // Then the clean-up paths of all of them, nearest first, each from the part around
             // its part (they lie between a part's loop and the loop inside it, both cut now).
             let mut items: Vec<(usize, &Path)> = (chain.iter())
-                .flat_map(|&c| plan.parts[c].cleanups.iter().map(move |p| (c, p)))
+                .flat_map(|&c| plan.parts[c].paths().map(move |p| (c, p)))
                 .collect();
             while !items.is_empty() {
                 let here = self.here();
@@ -494,11 +494,17 @@ impl<'a> Linker<'a> {
                 None => loose.push((c.clone(), Vec::new())),
             }
         }
+        // A finishing loop has leads, nothing on its way round (no part has spots beside one).
+        let leads = part.level == 0 && self.plan().allowance > 0.0;
+        let spots: &[Path] = if leads { &[] } else { &part.spots };
+        if leads {
+            loose.extend(part.spots.iter().map(|s| (s.clone(), Vec::new())));
+        }
         hole_of.extend(loose.iter().map(|_| None));
         items.extend(loose);
-        // The leaves beside each path (the outer loop 0, the items from 1), and how many paths
-        // beside each leaf are still to cut.
-        let mut leaves = LeavesBeside::new(self, part, &outer.0, &items, along);
+        // The leaves and spots beside each path (the outer loop 0, the items from 1), and how
+        // many paths beside each are still to cut.
+        let mut leaves = LeavesBeside::new(self, part, &outer.0, &items, along, spots);
         self.uncut = UncutLeaves::new(self.plan(), along);
         let mut ids: Vec<usize> = (1..=items.len()).collect();
         let here = self.here();
@@ -540,6 +546,14 @@ impl<'a> Linker<'a> {
         }
         if let Some(l) = ladder {
             self.leave_ladder(l, None, reach.distance);
+        }
+        // The spots that no path cut on its way round, nearest first.
+        let mut spots = std::mem::take(&mut leaves.left_spots);
+        while !spots.is_empty() {
+            let here = self.here();
+            let k = nearest(&spots, |p| walk::distance_to_start(p, here));
+            let spot = spots.swap_remove(k);
+            self.cut_path(n, spot, false, reach);
         }
         leaves.left
     }
@@ -631,26 +645,35 @@ impl<'a> Linker<'a> {
     /// faster way was chosen part by part, it made the 70 % one 3.6 s faster and the 90 % one
     /// 5.8 s slower), and for the finishing loop (it has leads).
     fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<usize> {
-        let (r, reach) = (self.plan().tool_radius, self.host_reach());
         if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
             return None;
         }
-        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
         let loops = std::iter::once(outer).chain(holes.iter().map(|h| &h.0));
-        let mut best: Option<(usize, f64)> = None;
-        for (k, l) in loops.enumerate() {
-            for end in ends {
-                let p = nearest_point(&l.segments, end);
-                let d = p.distance(end);
-                let both = ends
-                    .iter()
-                    .all(|&e| p.distance(e) <= reach && self.stays_inside(p, e, r));
-                if d <= reach && best.is_none_or(|(_, b)| d < b) && both {
-                    best = Some((k, d));
-                }
+        (loops.enumerate())
+            .filter_map(|(k, l)| self.hosts(l, c).map(|d| (k, d)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(k, _)| k)
+    }
+
+    /// How far the open path `c` lies from the loop `l` when `l` can cut it on its way round
+    /// (see [`Linker::excursions`]): from `l`'s point nearest to an end of `c`, both ends
+    /// within [`HOST_REACH_RADII`] tool radii with nothing in the way; none when `l` passes
+    /// nowhere so near.
+    fn hosts(&self, l: &Path, c: &Path) -> Option<f64> {
+        let (r, reach) = (self.plan().tool_radius, self.host_reach());
+        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+        let mut best: Option<f64> = None;
+        for end in ends {
+            let p = nearest_point(&l.segments, end);
+            let d = p.distance(end);
+            let both = ends
+                .iter()
+                .all(|&e| p.distance(e) <= reach && self.stays_inside(p, e, r));
+            if d <= reach && best.is_none_or(|b| d < b) && both {
+                best = Some(d);
             }
         }
-        best.map(|(k, _)| k)
+        best
     }
 
     /// Cuts one loop or clean-up path of the part `part` (its index); `enter` when the tool comes to it through
@@ -1146,7 +1169,7 @@ impl<'a> Linker<'a> {
         while let Some(i) = at {
             let n = &parts[i];
             let paths: Vec<&[Segment]> = (n.loops().map(|h| &h.segments[..]))
-                .chain(n.cleanups.iter().map(|c| &c.segments[..]))
+                .chain(n.paths().map(|c| &c.segments[..]))
                 .collect();
             let boxes = self.path_boxes[i].get_or_init(|| paths.iter().map(|p| bbox_of(p)).collect());
             let all: Vec<(&[Segment], Aabb)> = walk
@@ -1276,17 +1299,24 @@ impl<'a> Linker<'a> {
     }
 }
 
-/// The leaves a part cuts on the way round its paths (see [`Linker::cut_part`]): for each
-/// path (the outer loop 0, then the items), the leaves whose loop comes within a tool
-/// diameter of it, and for each leaf how many such paths are still to cut.
+/// The leaves and spots a part cuts on the way round its paths (see [`Linker::cut_part`]): for
+/// each path (the outer loop 0, then the items), the leaves whose loop and the spots whose
+/// path come within a tool diameter of it, and for each how many such paths are still to cut.
+/// Each is cut from the last of them: what the others clear round it is cleared by then, so
+/// the tool cuts only what is left of it.
 struct LeavesBeside<'a> {
     part: &'a Part,
-    /// The leaves, by index in `along`.
+    /// The leaves, by index in `along`; beside and pending count them first, then the spots.
     leaves: Vec<&'a Part>,
+    /// The part's spots (see [`crate::clear::Part::spots`]).
+    spots: &'a [Path],
     beside: Vec<Vec<usize>>,
     pending: Vec<usize>,
     /// Leaves that no path of the part passes near enough: cut after the part.
     left: Vec<usize>,
+    /// Spots that the last path beside them cannot cut on its way round: cut after the part's
+    /// paths.
+    left_spots: Vec<&'a Path>,
     ids: Vec<usize>,
     /// The segments of all the paths in one index (a part's outer loop can be long, and it is
     /// beside every leaf), with the path each is of.
@@ -1302,6 +1332,7 @@ impl<'a> LeavesBeside<'a> {
         outer: &Path,
         items: &[(Path, Vec<Excursion>)],
         along: &[usize],
+        spots: &'a [Path],
     ) -> Self {
         let plan = linker.plan();
         let (reach, eps) = (2.0 * plan.tool_radius, linker.tol.eps);
@@ -1313,9 +1344,10 @@ impl<'a> LeavesBeside<'a> {
         let boxes: Vec<Aabb> = segments.iter().map(Segment::bbox).collect();
         let index = BoxIndex::new(&boxes);
         let mut beside = vec![Vec::new(); paths.len()];
-        let mut pending = vec![0; along.len()];
-        for (l, &leaf) in along.iter().enumerate() {
-            let leaf_segments = &plan.parts[leaf].outer.segments;
+        let mut pending = vec![0; along.len() + spots.len()];
+        let shapes = (along.iter().map(|&leaf| &plan.parts[leaf].outer.segments[..]))
+            .chain(spots.iter().map(|s| &s.segments[..]));
+        for (l, leaf_segments) in shapes.enumerate() {
             let leaf_index = path_index(leaf_segments);
             for j in index.intersecting(&bbox_of(leaf_segments).inflated(reach)) {
                 let k = owner[j];
@@ -1334,8 +1366,14 @@ impl<'a> LeavesBeside<'a> {
             .filter(|&(_, &p)| p == 0)
             .map(|(&leaf, _)| leaf)
             .collect();
+        let left_spots = (spots.iter().zip(&pending[along.len()..]))
+            .filter(|&(_, &p)| p == 0)
+            .map(|(s, _)| s)
+            .collect();
         LeavesBeside {
             part,
+            spots,
+            left_spots,
             leaves: along.iter().map(|&c| &plan.parts[c]).collect(),
             beside,
             pending,
@@ -1355,6 +1393,13 @@ impl<'a> LeavesBeside<'a> {
         for &l in &self.beside[id] {
             self.pending[l] -= 1;
             if self.pending[l] > 0 {
+                continue;
+            }
+            if let Some(spot) = l.checked_sub(self.leaves.len()).map(|k| &self.spots[k]) {
+                match linker.hosts(&item.0, spot) {
+                    Some(_) => item.1.push(Excursion::Cleanup(spot.clone())),
+                    None => self.left_spots.push(spot),
+                }
                 continue;
             }
             // The nearest points of the path and the leaf within r; where they come equally
@@ -1382,7 +1427,7 @@ impl<'a> LeavesBeside<'a> {
             // A leaf with clean-up paths is cut after the part (see `cut_small_leaves`).
             let plan = linker.plan();
             let chain = linker.chain(self.ids[l]).unwrap_or_default();
-            let cleanups = chain.iter().any(|&c| !plan.parts[c].cleanups.is_empty());
+            let cleanups = chain.iter().any(|&c| plan.parts[c].paths().next().is_some());
             match nearest {
                 Some((_, _, p, q)) if !cleanups && linker.stays_inside(p, q, self.part.distance) => {
                     item.1.push(Excursion::Leaf(self.ids[l], chain, p));
@@ -1425,7 +1470,7 @@ struct UncutLeaves {
 impl UncutLeaves {
     fn new(plan: &ClearPlan, leaves: &[usize]) -> UncutLeaves {
         let leaves: Vec<usize> = (leaves.iter().copied())
-            .filter(|&l| !plan.parts[l].children.is_empty() || !plan.parts[l].cleanups.is_empty())
+            .filter(|&l| !plan.parts[l].children.is_empty() || plan.parts[l].paths().next().is_some())
             .collect();
         let boxes: Vec<Aabb> = leaves.iter().map(|&l| plan.parts[l].outer.bbox()).collect();
         UncutLeaves {
