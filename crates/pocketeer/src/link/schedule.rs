@@ -182,8 +182,8 @@ impl<'a> Linker<'a> {
         self.plan().parts[n].parent.is_some() && self.chain(n).is_some()
     }
 
-    /// The part `n` and the parts nested in it, outermost first, when none has an island and
-    /// all but the last exactly one child (the last none): what its loops, cut from the
+    /// The part `n` and the parts nested in it, outermost first, when none has an island or
+    /// spots and all but the last exactly one child (the last none): what its loops, cut from the
     /// outermost inwards, and its clean-up paths clear. Of more than one loop only when they
     /// are at least [`CHAIN_MIN_STEP_RADII`] tool radii apart: the paths of the parent beside
     /// such a leaf, cut before it, cut full width what its loops would have cleared, and a
@@ -194,7 +194,9 @@ impl<'a> Linker<'a> {
         let mut chain = vec![n];
         loop {
             let part = &parts[chain[chain.len() - 1]];
-            if !part.holes.is_empty() {
+            // A part with spots had leaves of its own, two or more (see `clear::spots`): it is
+            // cut as it was with them, before its parent, the first loop of its branch.
+            if !part.holes.is_empty() || !part.spots.is_empty() {
                 return None;
             }
             match part.children[..] {
