@@ -139,6 +139,29 @@ fn the_spaces_between_holes_cleared_from_one_spot_each_leave_nothing() {
 }
 
 #[test]
+fn narrow_leaves_cleared_by_one_pass_each_leave_nothing() {
+    // A 30 x 20 pocket round an island of radius 3, a 6 mm tool at 40 %: the level at 5.4 mm
+    // leaves a narrow leaf each side of the island, cleared by one straight pass along its
+    // middle (see `clear::spots`), replayed here from the G-code.
+    let pocket = Pocket {
+        boundary: rect(0.0, 0.0, 30.0, 20.0),
+        islands: vec![circle_cw(15.0, 10.0, 3.0)],
+    };
+    let params = ClearParams {
+        tool_radius: 3.0,
+        stepover: 2.4,
+        allowance: 0.0,
+    };
+    let plan = pocketeer::clear::plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
+    let passes = (plan.parts.iter().flat_map(|p| &p.spots))
+        .filter(|s| s.segments.iter().map(Segment::length).sum::<f64>() > 1.0)
+        .count();
+    assert_eq!(passes, 2, "a pass each side of the island");
+    let o = run(&[pocket], 6.0, 2.4, 3.0, Entry::Helix, Dialect::Grbl);
+    assert_clean(&o, 3.0);
+}
+
+#[test]
 fn seven_point_star_at_80_percent() {
     let pocket = Pocket {
         boundary: star(7, 50.0, 22.0),
