@@ -650,26 +650,30 @@ impl<'a> Linker<'a> {
         }
         let loops = std::iter::once(outer).chain(holes.iter().map(|h| &h.0));
         (loops.enumerate())
-            .filter_map(|(k, l)| self.hosts(l, c).map(|d| (k, d)))
+            .filter_map(|(k, l)| self.hosts(l, c, true).map(|d| (k, d)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(k, _)| k)
     }
 
     /// How far the open path `c` lies from the loop `l` when `l` can cut it on its way round
-    /// (see [`Linker::excursions`]): from `l`'s point nearest to an end of `c`, both ends
-    /// within [`HOST_REACH_RADII`] tool radii with nothing in the way; none when `l` passes
-    /// nowhere so near.
-    fn hosts(&self, l: &Path, c: &Path) -> Option<f64> {
+    /// (see [`Linker::excursions`]): from `l`'s point nearest to an end of `c`, that end (with
+    /// `both_ends`, both) within [`HOST_REACH_RADII`] tool radii with nothing in the way; none
+    /// when `l` passes nowhere so near. A spot's pass may run on beyond: the tool comes back
+    /// along it, where a clean-up path's way back along it is a second cut of the same.
+    fn hosts(&self, l: &Path, c: &Path, both_ends: bool) -> Option<f64> {
         let (r, reach) = (self.plan().tool_radius, self.host_reach());
         let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
         let mut best: Option<f64> = None;
         for end in ends {
             let p = nearest_point(&l.segments, end);
             let d = p.distance(end);
-            let both = ends
-                .iter()
-                .all(|&e| p.distance(e) <= reach && self.stays_inside(p, e, r));
-            if d <= reach && best.is_none_or(|b| d < b) && both {
+            let reached = |e: Point| p.distance(e) <= reach && self.stays_inside(p, e, r);
+            let ok = if both_ends {
+                ends.iter().all(|&e| reached(e))
+            } else {
+                reached(end)
+            };
+            if d <= reach && best.is_none_or(|b| d < b) && ok {
                 best = Some(d);
             }
         }
@@ -1396,7 +1400,7 @@ impl<'a> LeavesBeside<'a> {
                 continue;
             }
             if let Some(spot) = l.checked_sub(self.leaves.len()).map(|k| &self.spots[k]) {
-                match linker.hosts(&item.0, spot) {
+                match linker.hosts(&item.0, spot, false) {
                     Some(_) => item.1.push(Excursion::Cleanup(spot.clone())),
                     None => self.left_spots.push(spot),
                 }
