@@ -97,19 +97,29 @@ fn rectangle_with_two_round_islands_at_every_stepover_up_to_90_percent() {
         boundary: rect(0.0, 0.0, 100.0, 60.0),
         islands: vec![circle_cw(30.0, 30.0, 10.0), circle_cw(70.0, 30.0, 8.0)],
     };
-    for percent in [30.0, 50.0, 70.0, 83.0, 90.0] {
-        let o = run(
-            std::slice::from_ref(&pocket),
-            6.0,
-            6.0 * percent / 100.0,
-            2.0,
-            Entry::Helix,
-            Dialect::Grbl,
-        );
-        eprintln!("{percent}%: tested {}", o.tested);
-        assert_clean(&o, 2.0);
+    for o in clean_at(&pocket, &[30.0, 50.0, 70.0, 83.0, 90.0]) {
         assert!(o.warnings.is_empty(), "{:?}", o.warnings);
     }
+}
+
+/// `pocket` cleared 2 mm deep with a 6 mm tool at each of the stepovers `percents` (of the
+/// diameter), each program checked clean; their outcomes.
+fn clean_at(pocket: &Pocket, percents: &[f64]) -> Vec<Outcome> {
+    (percents.iter())
+        .map(|&percent| {
+            let o = run(
+                std::slice::from_ref(pocket),
+                6.0,
+                6.0 * percent / 100.0,
+                2.0,
+                Entry::Helix,
+                Dialect::Grbl,
+            );
+            eprintln!("{percent}%: tested {}", o.tested);
+            assert_clean(&o, 2.0);
+            o
+        })
+        .collect()
 }
 
 #[test]
@@ -124,18 +134,7 @@ fn the_spaces_between_holes_cleared_from_one_spot_each_leave_nothing() {
         boundary: rect(0.0, 0.0, 80.0, 80.0),
         islands: holes,
     };
-    for percent in [30.0, 40.0, 50.0] {
-        let o = run(
-            std::slice::from_ref(&pocket),
-            6.0,
-            6.0 * percent / 100.0,
-            2.0,
-            Entry::Helix,
-            Dialect::Grbl,
-        );
-        eprintln!("{percent}%: tested {}", o.tested);
-        assert_clean(&o, 2.0);
-    }
+    clean_at(&pocket, &[30.0, 40.0, 50.0]);
 }
 
 #[test]

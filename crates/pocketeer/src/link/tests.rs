@@ -730,13 +730,13 @@ fn linked_with_leaves(pocket: &Pocket, leaves: usize) -> Linked {
     let (plan, prepared) = planned(pocket, 2.4);
     let n = plan.parts.iter().filter(|p| p.children.is_empty()).count();
     assert!(n >= leaves, "{n} leaves");
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
+    linked_helix(&plan, &prepared)
+}
+
+/// `plan` linked with helix entries, checked for gouges.
+fn linked_helix(plan: &ClearPlan, prepared: &PreparedPocket) -> Linked {
+    let l = link(&[(prepared, plan)], &params(Entry::Helix), &Tolerance::default()).unwrap();
+    assert_no_gouge(&l.toolpath, prepared);
     l
 }
 
@@ -784,14 +784,7 @@ fn small_leaves_in_the_corners_of_a_channel_are_cut_without_entries_of_their_own
     let leaves = (plan.parts.iter()).filter(|p| p.parent.is_some()).count();
     let spots: usize = plan.parts.iter().map(|p| p.spots.len()).sum();
     assert_eq!((leaves, spots), (0, 2), "leaves and spots");
-    let l = link(
-        &[(&prepared, &plan)],
-        &params(Entry::Helix),
-        &Tolerance::default(),
-    )
-    .unwrap();
-    assert_no_gouge(&l.toolpath, &prepared);
-    assert_eq!(entries(&l), 1);
+    assert_eq!(entries(&linked_helix(&plan, &prepared)), 1);
 }
 
 #[test]
