@@ -3,6 +3,26 @@
 use super::{intersect, Aabb, Arc, Line, Point, Segment, Vector};
 use std::f64::consts::{PI, TAU};
 
+/// Where `p` is nearest to `segments`: the index of the segment (the first of those equally
+/// near), the parameter on it and the distance; `(0, 0.0, ∞)` for no segments.
+///
+/// ```
+/// use pocketeer::geom::{nearest_on, Line, Point, Segment};
+/// let l = |a: (f64, f64), b: (f64, f64)| Segment::Line(Line::new(Point::new(a.0, a.1), Point::new(b.0, b.1)));
+/// let path = [l((0.0, 0.0), (10.0, 0.0)), l((10.0, 0.0), (10.0, 10.0))];
+/// assert_eq!(nearest_on(&path, Point::new(12.0, 4.0)), (1, 0.4, 2.0));
+/// ```
+pub fn nearest_on(segments: &[Segment], p: Point) -> (usize, f64, f64) {
+    let mut best = (0, 0.0, f64::INFINITY);
+    for (k, s) in segments.iter().enumerate() {
+        let d = distance_from_segment(s, p);
+        if d < best.2 {
+            best = (k, closest_param(s, p), d);
+        }
+    }
+    best
+}
+
 /// Parameter of the point of `seg` nearest to `p`.
 pub fn closest_param(seg: &Segment, p: Point) -> f64 {
     match seg {

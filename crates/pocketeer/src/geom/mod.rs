@@ -24,7 +24,7 @@ pub use arc::{normalize_angle, Arc};
 pub use cluster::{cluster_points, cluster_points_by};
 pub use contour::{bbox_of, is_convex, signed_area, winding_number, Contour, WindingIndex};
 pub use distance::{
-    closest_param, closest_point, distance_from_segment, segment_distance, segments_nearer_than,
+    closest_param, closest_point, distance_from_segment, nearest_on, segment_distance, segments_nearer_than,
 };
 pub use enclosing::{enclosing_circle, farthest_from_segment, outline_points};
 pub use index::{

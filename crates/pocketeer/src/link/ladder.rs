@@ -2,8 +2,9 @@
 //! ladder), and the way out of them to the next path: along the innermost loop, then straight
 //! on as soon as the way is clear (see [`Linker::cut_enclosed_holes`], [`Linker::leave_ladder`]).
 
-use super::{clearance_slack, loop_path, nearest_on, route, walk, Direction, Linker, Reach};
+use super::{clearance_slack, loop_path, route, walk, Direction, Linker, Reach};
 use crate::clear::Path;
+use crate::geom::nearest_on;
 use crate::geom::{Aabb, BoxIndex, Point, Segment};
 use crate::toolpath::{Feed, Point3};
 

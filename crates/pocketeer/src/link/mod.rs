@@ -35,7 +35,7 @@ pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
-use crate::geom::{bbox_of, Aabb, BoxIndex, Point, Segment, Tolerance};
+use crate::geom::{bbox_of, nearest_on, Aabb, BoxIndex, Point, Segment, Tolerance};
 use crate::machining_time::TimeModel;
 use crate::toolpath::{Feed, Point3, Toolpath};
 use ladder::Ladder;
@@ -1564,19 +1564,6 @@ fn clearance_slack(d: f64, tol: &Tolerance) -> f64 {
 fn nearest_point(segments: &[Segment], p: Point) -> Point {
     let (k, t, _) = nearest_on(segments, p);
     segments[k].point_at(t)
-}
-
-/// Where `p` is nearest to `segments`: the segment's index, the parameter on it and the
-/// distance.
-fn nearest_on(segments: &[Segment], p: Point) -> (usize, f64, f64) {
-    let mut best = (0, 0.0, f64::INFINITY);
-    for (k, s) in segments.iter().enumerate() {
-        let d = crate::geom::distance_from_segment(s, p);
-        if d < best.2 {
-            best = (k, crate::geom::closest_param(s, p), d);
-        }
-    }
-    best
 }
 
 fn loop_path(segments: &[Segment]) -> Path {
