@@ -4,7 +4,7 @@
 //!
 //! `cargo build --release` (the workspace, for the `pocketeer` binary), then
 //! `cargo run --release --manifest-path bench/Cargo.toml --bin whole [-- --runs N] [--quick]
-//! [--ours PATH] [--only TEXT]`. The drawings are written to `bench/target/whole/`. Prints
+//! [--ours PATH] [--only TEXT] [--command offset|pocket]`. The drawings are written to `bench/target/whole/`. Prints
 //! Markdown tables: medians of N runs each (default 5), our time over the baseline's, and the
 //! loops each program wrote.
 
@@ -24,6 +24,7 @@ fn main() {
     let runs: usize = value("--runs").and_then(|s| s.parse().ok()).unwrap_or(5);
     let quick = args.iter().any(|a| a == "--quick");
     let only = value("--only");
+    let command_only = value("--command");
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     let ours = value("--ours").map_or_else(|| manifest.join("../target/release/pocketeer"), PathBuf::from);
     let baseline = std::env::current_exe()
@@ -109,6 +110,9 @@ fn main() {
         ),
     ];
     for (command, flags) in jobs {
+        if command_only.as_deref().is_some_and(|c| c != command) {
+            continue;
+        }
         println!(
             "\n`{command} FILE {} -o OUT`, whole processes in turn, median of {runs} wall times:\n",
             flags.join(" ")

@@ -95,7 +95,14 @@ pub fn guard(inputs: &[&Path], outputs: &[(&str, &Path)]) -> Result<(), String> 
     Ok(())
 }
 
-/// Writes `bytes` to `path` atomically. The error names the file.
+/// Writes `bytes` to `path` atomically: other programs and a failed run see the old file or
+/// the whole new one, never part of it. The error names the file.
+///
+/// There is no `fsync` before the rename. What we write is derived from the drawing and the
+/// flags and is made again by running again; waiting for the disk cost 1.3 ms of a 3.5 ms
+/// offset of a 75-hole plate (more than half the run's own work). Linux's ext4 (by its
+/// default `auto_da_alloc`) and btrfs write a file's data before a rename that replaces
+/// another file is committed, which covers the case that matters: a good old program.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -109,7 +116,6 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
-        f.sync_all()?;
         std::fs::rename(&tmp, path)
     })();
     result.map_err(|e| {
