@@ -261,16 +261,15 @@ pub fn line_arc(l: &Line, c: &Arc, eps: f64) -> Intersections {
             }
             let t = clamp01(t);
             let p = l.point_at(t);
-            let angle = (p - c.center()).angle();
-            if !c.contains_angle(angle, eps) {
+            let Some(tb) = c.param_within((p - c.center()).angle(), eps) else {
                 continue;
-            }
+            };
             // Clamping to the line's end moves the point by at most eps along the line.
             if (p.distance(c.center()) - r).abs() <= 2.0 * eps {
                 out.push(Intersection::Point {
                     point: p,
                     ta: t,
-                    tb: clamp01(c.param_of_angle(angle)),
+                    tb: clamp01(tb),
                 });
             }
         }
@@ -358,13 +357,15 @@ pub fn arc_arc(c1: &Arc, c2: &Arc, eps: f64) -> Intersections {
     for group in groups {
         for &p in group {
             let p = refine_on_circles(c1, c2, p);
-            let a1 = (p - c1.center()).angle();
-            let a2 = (p - c2.center()).angle();
-            if c1.contains_angle(a1, eps) && c2.contains_angle(a2, eps) {
+            // The second angle only for a point on the first arc.
+            let on = c1
+                .param_within((p - c1.center()).angle(), eps)
+                .and_then(|ta| Some((ta, c2.param_within((p - c2.center()).angle(), eps)?)));
+            if let Some((ta, tb)) = on {
                 out.push(Intersection::Point {
                     point: p,
-                    ta: clamp01(c1.param_of_angle(a1)),
-                    tb: clamp01(c2.param_of_angle(a2)),
+                    ta: clamp01(ta),
+                    tb: clamp01(tb),
                 });
             }
         }
