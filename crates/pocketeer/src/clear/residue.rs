@@ -16,11 +16,22 @@
 //! distances and the fact that distances change no faster than the points move, so the test
 //! never misses material; it errs only by keeping a little more path than needed, less the
 //! finer the last halves are.
+//!
+//! A needed piece small enough is then tried as a spot (see [`Gap::spot_for`]): the tool
+//! standing at one point c, sweeping the disc of 0.95 r round it, taken as one more cover in
+//! the same test. Where that proves every point the piece answers for covered, the piece
+//! gives way to a short path ending at c. On the 8-island rectangle at 80 % stepover most
+//! clean-up paths are such pieces: three sides of a little triangle in the cusp between the
+//! loops round two islands and the walls' loops, followed round where the tool need only step
+//! in.
 
 use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
 use crate::geom::PreparedPocket;
-use crate::geom::{Contour, Point, Segment, SegmentIndex, Tolerance, Vector};
+use crate::geom::{
+    closest_point, enclosing_circle, nearest_on, outline_points, Aabb, Contour, Line, Point, Segment,
+    SegmentIndex, Tolerance, Vector,
+};
 use crate::offset::{OffsetError, Sources};
 use std::cell::Cell;
 use std::sync::Arc;
@@ -31,6 +42,9 @@ use std::sync::Arc;
 /// on both ends; halved three times, the 8-island rectangle at 70 % stepover keeps 139 mm of
 /// clean-up path where it kept 230 mm.
 const FINEST_SPLITS: u32 = 3;
+
+/// The length of a spot's path, in tool radii at most (see [`Gap::spot_for`]).
+const SPOT_LENGTH_RADII: f64 = 0.1;
 
 /// How much nearer than the tool radius a clean-up path's tool reaches the farthest point it
 /// answers for, in tool radii (see [`path_offset`]): room for rounding.
@@ -118,9 +132,12 @@ pub fn add_cleanups(
             slack: 0.1 * r,
             splits: FINEST_SPLITS,
             hints: Default::default(),
+            spot: Default::default(),
+            eps: tol.eps,
         };
         for l in &half_loops[gi] {
             for path in gap.needed(l) {
+                let path = gap.spot_for(&path).unwrap_or(path);
                 let owner = enclosing(&plan.parts, &by_level[k], path.segments[0].start());
                 found.push((owner, path));
             }
@@ -154,6 +171,11 @@ struct Gap<'a> {
     /// (see [`SegmentIndex::distance_hinted`]): the points come one after another along the
     /// normals and the half loop.
     hints: [Cell<usize>; 3],
+    /// A point where the tool stands, a cover besides the loops while a spot is tried (see
+    /// [`Gap::spot_for`]).
+    spot: Cell<Option<Point>>,
+    /// The geometric epsilon, for the spot's path against the walls.
+    eps: f64,
 }
 
 impl Gap<'_> {
@@ -161,19 +183,58 @@ impl Gap<'_> {
     fn needed(&self, half: &Contour) -> Vec<Path> {
         let mut subs: Vec<SubPiece> = Vec::new();
         for (i, seg) in half.segments.iter().enumerate() {
-            // Along an arc the normals fan out: a point u along the normal moves (1 + u/ρ)
-            // times as fast as its foot.
-            let stretch = match seg {
-                Segment::Arc(a) => 1.0 + self.reach / a.radius(),
-                Segment::Line(_) => 1.0,
-            };
-            let n = ((seg.length() * stretch / self.slack).ceil() as usize).clamp(1, 1 << 20);
-            for j in 0..n {
-                let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
-                self.classify(seg, i, (t0, t1), self.slack, self.splits, &mut subs);
-            }
+            self.classify_segment(seg, i, &mut subs);
         }
         paths_of(half, &subs)
+    }
+
+    /// Adds the stretches of `seg` (the `i`-th segment of a half loop) to `subs`, each clean
+    /// or needed (see [`Gap::classify`]).
+    fn classify_segment(&self, seg: &Segment, i: usize, subs: &mut Vec<SubPiece>) {
+        // Along an arc the normals fan out: a point u along the normal moves (1 + u/ρ) times
+        // as fast as its foot.
+        let stretch = match seg {
+            Segment::Arc(a) => 1.0 + self.reach / a.radius(),
+            Segment::Line(_) => 1.0,
+        };
+        let n = ((seg.length() * stretch / self.slack).ceil() as usize).clamp(1, 1 << 20);
+        for j in 0..n {
+            let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
+            self.classify(seg, i, (t0, t1), self.slack, self.splits, subs);
+        }
+    }
+
+    /// A short path ending at a spot c from which the tool clears what is left of all that the
+    /// needed piece `path` answers for, or None. c is the centre of the smallest circle round
+    /// the piece (a piece under two tool radii across); the path runs to it from the piece's
+    /// nearest point, at most a tenth of the radius long, every point of it a tool radius from
+    /// the walls; and the piece's test (see [`Gap::needed`]) finds nothing needed with the
+    /// tool at c as one more cover, reaching 0.95 r.
+    fn spot_for(&self, path: &Path) -> Option<Path> {
+        let r = self.radius;
+        let b = (path.segments.iter())
+            .map(Segment::bbox)
+            .fold(Aabb::EMPTY, |a, b| a.union(&b));
+        if b.width() > 2.0 * r || b.height() > 2.0 * r {
+            return None;
+        }
+        let (c, _) = enclosing_circle(&outline_points(&path.segments))?;
+        let (k, _, room) = nearest_on(&path.segments, c);
+        let toward = (closest_point(path.segments.get(k)?, c) - c).normalized()?;
+        let line = Segment::Line(Line::new(c + toward * room.min(SPOT_LENGTH_RADII * r), c));
+        if self.pocket.walls().segment_within(&line, r, self.eps) {
+            return None;
+        }
+        self.spot.set(Some(c));
+        let mut subs = Vec::new();
+        for (i, seg) in path.segments.iter().enumerate() {
+            self.classify_segment(seg, i, &mut subs);
+        }
+        self.spot.set(None);
+        subs.iter().all(|s| !s.needed).then(|| Path {
+            segments: vec![line],
+            closed: false,
+        })
     }
 
     /// Adds the stretch `t` of `seg` (the `i`-th segment of a half loop), whose points lie
@@ -223,7 +284,11 @@ impl Gap<'_> {
             Some(_) => f64::NEG_INFINITY,
             None => self.pocket.distance_hinted(p, &self.hints[2]) - self.next_distance,
         };
-        by_here.max(by_below).max(inside_below)
+        // The tool standing at the spot being tried sweeps the disc round it.
+        let by_spot = (self.spot.get()).map_or(f64::NEG_INFINITY, |c| {
+            (1.0 - REACH_MARGIN_RADII) * r - p.distance(c)
+        });
+        by_here.max(by_below).max(inside_below).max(by_spot)
     }
 
     /// True when every point within `slack` of the normal segment {m + u·n : 0 ≤ u ≤ reach} is
@@ -349,6 +414,8 @@ mod tests {
             slack: 0.1,
             splits,
             hints: Default::default(),
+            spot: Default::default(),
+            eps: 1e-9,
         };
         gap.needed(&square(1.9, 38.1))
     }
