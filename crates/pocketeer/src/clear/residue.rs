@@ -129,6 +129,7 @@ pub fn add_cleanups(
             next_distance: nominal(k),
             radius: r,
             reach: nominal(k) - half[gi].0,
+            delta: half[gi].0 - plan.distances[k],
             slack: 0.1 * r,
             splits: FINEST_SPLITS,
             hints: Default::default(),
@@ -162,6 +163,8 @@ struct Gap<'a> {
     /// g − δ: how far along its normal a point of the half loop answers for (see
     /// [`path_offset`]).
     reach: f64,
+    /// δ: how far the half loop lies beyond the level outside it.
+    delta: f64,
     /// Largest distance between a sample and the points it answers for, at first (see
     /// [`FINEST_SPLITS`]).
     slack: f64,
@@ -205,11 +208,14 @@ impl Gap<'_> {
     }
 
     /// A short path ending at a spot c from which the tool clears what is left of all that the
-    /// needed piece `path` answers for, or None. c is the centre of the smallest circle round
-    /// the piece (a piece under two tool radii across); the path runs to it from the piece's
-    /// nearest point, at most a tenth of the radius long, every point of it a tool radius from
-    /// the walls; and the piece's test (see [`Gap::needed`]) finds nothing needed with the
-    /// tool at c as one more cover, reaching 0.95 r.
+    /// needed piece `path` (under two tool radii across) answers for, or None. c is the centre
+    /// of the smallest circle round the piece, else a point beyond the piece's point nearest
+    /// that centre, across the band of material the piece answers for: the nearest of three
+    /// from where 0.95 r still reaches the band's far edge to its middle (the excursion out to
+    /// a spot and back is shorter the nearer it lies). The path runs to c from the piece's
+    /// nearest point, at most a tenth of the radius long, every point of it a tool radius
+    /// from the walls; and the piece's test (see [`Gap::needed`]) finds nothing needed with
+    /// the tool at c as one more cover, reaching 0.95 r.
     fn spot_for(&self, path: &Path) -> Option<Path> {
         let r = self.radius;
         let b = (path.segments.iter())
@@ -219,6 +225,23 @@ impl Gap<'_> {
             return None;
         }
         let (c, _) = enclosing_circle(&outline_points(&path.segments))?;
+        // Then points across the band the piece answers for, along the normal at its point
+        // nearest c: the material lies r − δ to g − δ beyond the piece.
+        let (k, t, _) = nearest_on(&path.segments, c);
+        let seg = path.segments.get(k)?;
+        let foot = seg.point_at(t);
+        let normal = seg.tangent_at(t).perp();
+        let far = 0.5 * (self.radius - self.delta + self.reach);
+        let near = (self.reach - (1.0 - REACH_MARGIN_RADII) * r).clamp(0.0, far);
+        std::iter::once(c)
+            .chain([0.25, 0.5, 1.0].map(|f| foot + normal * (near + f * (far - near))))
+            .find_map(|c| self.spot_at(path, c))
+    }
+
+    /// The spot's path to `c` (see [`Gap::spot_for`]) when the tool at `c` covers what `path`
+    /// answers for.
+    fn spot_at(&self, path: &Path, c: Point) -> Option<Path> {
+        let r = self.radius;
         let (k, _, room) = nearest_on(&path.segments, c);
         let toward = (closest_point(path.segments.get(k)?, c) - c).normalized()?;
         let line = Segment::Line(Line::new(c + toward * room.min(SPOT_LENGTH_RADII * r), c));
@@ -411,6 +434,7 @@ mod tests {
             next_distance: 2.8,
             radius: 1.0,
             reach: 0.9,
+            delta: 0.9,
             slack: 0.1,
             splits,
             hints: Default::default(),
