@@ -444,6 +444,75 @@ mod tests {
         gap.needed(&square(1.9, 38.1))
     }
 
+    /// The gap of [`corner_paths`] with the bottom loop of level k + 1 broken between
+    /// x = 20 − w and 20 + w: the tool misses a patch above the middle of the bottom edge.
+    fn broken_gap<'a>(pocket: &'a PreparedPocket, w: f64) -> Gap<'a> {
+        let line = |a: (f64, f64), b: (f64, f64)| {
+            Segment::Line(Line::new(Point::new(a.0, a.1), Point::new(b.0, b.1)))
+        };
+        let (lo, hi) = (2.8, 37.2);
+        let below = [
+            line((lo, lo), (20.0 - w, lo)),
+            line((20.0 + w, lo), (hi, lo)),
+            line((hi, lo), (hi, hi)),
+            line((hi, hi), (lo, hi)),
+            line((lo, hi), (lo, lo)),
+        ];
+        Gap {
+            pocket,
+            here: SegmentIndex::new(&square(1.0, 39.0).segments),
+            below: SegmentIndex::new(&below),
+            next_distance: 2.8,
+            radius: 1.0,
+            reach: 0.9,
+            delta: 0.9,
+            slack: 0.1,
+            splits: FINEST_SPLITS,
+            hints: Default::default(),
+            spot: Default::default(),
+            eps: 1e-9,
+        }
+    }
+
+    #[test]
+    fn a_spot_across_the_band_clears_what_the_centre_does_not() {
+        let pocket = PreparedPocket::new(&Pocket {
+            boundary: square(0.0, 40.0),
+            islands: vec![],
+        });
+        let gap = broken_gap(&pocket, 1.2);
+        let pieces = gap.needed(&square(1.9, 38.1));
+        let piece = (pieces.iter())
+            .find(|p| (p.segments[0].start().x - 20.0).abs() < 2.0)
+            .expect("a piece under the break");
+        let (centre, _) = enclosing_circle(&outline_points(&piece.segments)).expect("a circle");
+        assert!(gap.spot_at(piece, centre).is_none(), "the centre is not enough");
+        let spot = gap.spot_for(piece).expect("a spot");
+        assert_eq!(spot.segments.len(), 1);
+        let (from, c) = (spot.segments[0].start(), spot.segments[0].end());
+        assert!(c.y > 1.9 + 1e-6 && (c.x - 20.0).abs() < 1e-9, "{c:?}");
+        assert!(from.distance(c) <= SPOT_LENGTH_RADII + 1e-12);
+        // What the tool leaves, sampled on its own: within 2.8 of the walls (not inside level
+        // k + 1), farther than r from both levels' loops. From the centre its farthest point
+        // is 0.91 r away, too near the reach of 0.95 r for the test's margins; from the spot
+        // all of it lies well within reach.
+        let loops: Vec<Segment> = (square(1.0, 39.0).segments.into_iter())
+            .chain([0, 1].map(|k| {
+                let x = [(2.8, 18.8), (21.2, 37.2)][k];
+                Segment::Line(Line::new(Point::new(x.0, 2.8), Point::new(x.1, 2.8)))
+            }))
+            .collect();
+        let left: Vec<Point> = (0..=400)
+            .flat_map(|i| (0..=90).map(move |j| Point::new(18.0 + 0.01 * i as f64, 1.9 + 0.01 * j as f64)))
+            .filter(|&p| p.y < 2.8 - 1e-9)
+            .filter(|&p| loops.iter().all(|s| closest_point(s, p).distance(p) > 1.0))
+            .collect();
+        assert!(left.len() > 100, "{}", left.len());
+        let farthest = |q: Point| left.iter().map(|p| p.distance(q)).fold(0.0, f64::max);
+        assert!(farthest(centre) > 0.9, "{}", farthest(centre));
+        assert!(farthest(c) < 0.8, "{}", farthest(c));
+    }
+
     #[test]
     fn paths_lie_as_near_the_level_outside_as_the_reach_allows() {
         // 80 % of a 6 mm tool: g − r and a margin, where half way was 2.4.
