@@ -31,7 +31,7 @@ mod walk;
 
 pub use detour::detour;
 pub use entry::Helix;
-pub use order::{quick_tour, tour, tour_length};
+pub use order::{tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
@@ -1542,7 +1542,7 @@ fn next_item(items: &[(Path, Vec<Excursion>)], boxes: &[Aabb], here: Point) -> u
         );
     }
     let places: Vec<Point> = boxes.iter().map(|b| b.min.midpoint(b.max)).collect();
-    quick_tour(&places, here).first().copied().unwrap_or(0)
+    tour(&places, here).first().copied().unwrap_or(0)
 }
 
 /// Where the tool may go at depth to reach the next path: anywhere the tool centre keeps
