@@ -20,10 +20,10 @@
 //! A needed piece small enough, or a run of neighbouring ones, is then tried as a spot (see
 //! [`Gap::spot_for`], [`Gap::with_spots`]): the tool standing at one point c, sweeping the
 //! disc of 0.95 r round it, taken as one more cover in the same test. Where that proves every
-//! point the pieces answer for covered, they give way to a short path ending at c. On the 8-island rectangle at 80 % stepover most
-//! clean-up paths are such pieces: three sides of a little triangle in the cusp between the
-//! loops round two islands and the walls' loops, followed round where the tool need only step
-//! in.
+//! point the pieces answer for covered, they give way to a short path ending at c. On the
+//! 8-island rectangle at 80 % stepover most clean-up paths are such pieces: three sides of a
+//! little triangle in the cusp between the loops round two islands and the walls' loops,
+//! followed round where the tool need only step in.
 
 use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
@@ -274,17 +274,19 @@ impl Gap<'_> {
             return None;
         }
         let (c, _) = enclosing_circle(&outline_points(&path.segments))?;
+        if let Some(spot) = self.spot_at(path, c) {
+            return Some(spot);
+        }
         // Then points across the band the piece answers for, along the normal at its point
         // nearest c: the material lies r − δ to g − δ beyond the piece.
         let (k, t, _) = nearest_on(&path.segments, c);
         let seg = path.segments.get(k)?;
-        let foot = seg.point_at(t);
-        let normal = seg.tangent_at(t).perp();
+        let (foot, normal) = (seg.point_at(t), seg.tangent_at(t).perp());
         let far = 0.5 * (self.radius - self.delta + self.reach);
         let near = (self.reach - (1.0 - REACH_MARGIN_RADII) * r).clamp(0.0, far);
-        std::iter::once(c)
-            .chain([0.25, 0.5, 1.0].map(|f| foot + normal * (near + f * (far - near))))
-            .find_map(|c| self.spot_at(path, c))
+        [0.25, 0.5, 1.0]
+            .into_iter()
+            .find_map(|f| self.spot_at(path, foot + normal * (near + f * (far - near))))
     }
 
     /// The spot's path to `c` (see [`Gap::spot_for`]) when the tool at `c` covers what `path`
@@ -468,18 +470,14 @@ mod tests {
         Contour::polygon(&[p(a, a), p(b, a), p(b, b), p(a, b)])
     }
 
-    /// The clean-up paths of one gap in a 40 mm square pocket, tool radius 1: levels at 1 and
-    /// 2.8 (a gap of 1.8 > r), the half level at 1.9, each sub-piece halved `splits` times at
-    /// most.
-    fn corner_paths(splits: u32) -> Vec<Path> {
-        let pocket = PreparedPocket::new(&Pocket {
-            boundary: square(0.0, 40.0),
-            islands: vec![],
-        });
-        let gap = Gap {
-            pocket: &pocket,
+    /// One gap in a 40 mm square pocket, tool radius 1: the loop of level k at 1 from the
+    /// walls, `below` for level k + 1 at 2.8 (a gap of 1.8 > r), the half level at 1.9, each
+    /// sub-piece halved `splits` times at most.
+    fn gap_with<'a>(pocket: &'a PreparedPocket, below: &[Segment], splits: u32) -> Gap<'a> {
+        Gap {
+            pocket,
             here: SegmentIndex::new(&square(1.0, 39.0).segments),
-            below: SegmentIndex::new(&square(2.8, 37.2).segments),
+            below: SegmentIndex::new(below),
             next_distance: 2.8,
             radius: 1.0,
             reach: 0.9,
@@ -489,27 +487,26 @@ mod tests {
             hints: Default::default(),
             spot: Default::default(),
             eps: 1e-9,
-        };
-        gap.needed(&square(1.9, 38.1))
+        }
     }
 
-    /// The gap of [`corner_paths`] with the bottom loop of level k + 1 broken where `breaks`
-    /// (x ranges, in order) say: the tool misses patches above the bottom edge.
+    fn square_pocket() -> PreparedPocket {
+        PreparedPocket::new(&Pocket {
+            boundary: square(0.0, 40.0),
+            islands: vec![],
+        })
+    }
+
+    /// The clean-up paths of the gap of [`gap_with`] with level k + 1 whole.
+    fn corner_paths(splits: u32) -> Vec<Path> {
+        let pocket = square_pocket();
+        gap_with(&pocket, &square(2.8, 37.2).segments, splits).needed(&square(1.9, 38.1))
+    }
+
+    /// The gap of [`gap_with`] with the bottom loop of level k + 1 broken where `breaks` (x
+    /// ranges, in order) say: the tool misses patches above the bottom edge.
     fn broken_gap<'a>(pocket: &'a PreparedPocket, breaks: &[(f64, f64)]) -> Gap<'a> {
-        Gap {
-            pocket,
-            here: SegmentIndex::new(&square(1.0, 39.0).segments),
-            below: SegmentIndex::new(&broken_below(breaks)),
-            next_distance: 2.8,
-            radius: 1.0,
-            reach: 0.9,
-            delta: 0.9,
-            slack: 0.1,
-            splits: FINEST_SPLITS,
-            hints: Default::default(),
-            spot: Default::default(),
-            eps: 1e-9,
-        }
+        gap_with(pocket, &broken_below(breaks), FINEST_SPLITS)
     }
 
     /// The loops of level k + 1 of [`broken_gap`].
@@ -533,9 +530,9 @@ mod tests {
         below
     }
 
-    /// What the tool leaves in `gap` near the bottom edge, sampled on its own every 0.01 mm for
-    /// x in 15..25: within 2.8 of the walls (not inside level k + 1), farther than r from both
-    /// levels' loops.
+    /// What the tool leaves in the gap of [`broken_gap`] near the bottom edge, sampled on its
+    /// own every 0.01 mm for x in 15..25: within 2.8 of the walls (not inside level k + 1),
+    /// farther than r from both levels' loops.
     fn left_by(breaks: &[(f64, f64)]) -> Vec<Point> {
         let loops: Vec<Segment> = (square(1.0, 39.0).segments.into_iter())
             .chain(broken_below(breaks))
@@ -551,10 +548,7 @@ mod tests {
     fn two_pieces_beside_one_cusp_give_way_to_one_spot() {
         // The loop below broken twice, 0.2 mm apart: two patches left, one needed piece above
         // each, each clearable from a spot of its own, and both from one.
-        let pocket = PreparedPocket::new(&Pocket {
-            boundary: square(0.0, 40.0),
-            islands: vec![],
-        });
+        let pocket = square_pocket();
         let breaks = [(18.5, 19.9), (20.1, 21.5)];
         let gap = broken_gap(&pocket, &breaks);
         let pieces: Vec<Path> = (gap.needed(&square(1.9, 38.1)).into_iter())
@@ -576,10 +570,7 @@ mod tests {
 
     #[test]
     fn a_spot_across_the_band_clears_what_the_centre_does_not() {
-        let pocket = PreparedPocket::new(&Pocket {
-            boundary: square(0.0, 40.0),
-            islands: vec![],
-        });
+        let pocket = square_pocket();
         let gap = broken_gap(&pocket, &[(18.8, 21.2)]);
         let pieces = gap.needed(&square(1.9, 38.1));
         let piece = (pieces.iter())
