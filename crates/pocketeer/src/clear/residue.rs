@@ -33,7 +33,8 @@ use crate::geom::{
     SegmentIndex, Tolerance, Vector,
 };
 use crate::offset::{OffsetError, Sources};
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
+use std::collections::HashSet;
 use std::sync::Arc;
 
 /// How many times a sub-piece not proven clean is halved before it is kept: the margin a
@@ -51,6 +52,37 @@ const SPOT_LENGTH_RADII: f64 = 0.1;
 /// rectangle: at 90 % 354.3 s with each piece alone, 350.3 s with runs within two radii; at
 /// 80 % 346.6 -> 342.4 s. Within one radius (pairs, tried first to last) 350.9 s at 90 %.
 const RUN_GAP_RADII: f64 = 2.0;
+
+/// How near, in tool radii, needed pieces of one gap lie to one another to be tried as one
+/// group (see [`Gap::clear`]), in turn, the pieces of the groups taken left out of the next:
+/// the two sides of a patch between two islands lie up to twice the reach of a piece apart
+/// (2 (g − δ) < 2r) and the patch's width more; where groups that wide fail (the four
+/// patches round a leaf between four islands), nearer pieces may still be one.
+const GROUP_GAPS_RADII: [f64; 3] = [3.0, 1.5, 0.75];
+
+/// How far in from the ends of a group of pieces a straight pass may start and end, in tool
+/// radii, tried in turn (see [`Gap::pass_for`]): the pieces run past the material's ends.
+const PASS_TRIMS_RADII: [f64; 4] = [0.75, 0.5, 0.25, 0.0];
+
+/// Where across a group of pieces a straight pass may run, as shares of the way from one
+/// side to the other, tried in turn (see [`Gap::pass_for`]): half way first; the material
+/// of a triangle lies nearer its wide side.
+const PASS_ACROSS: [f64; 3] = [0.5, 0.35, 0.65];
+
+/// How near, in tool radii, the material a spot of a path through spots answers for must lie
+/// to it, sampled (see [`Gap::path_through_spots`]): below the reach of 0.95 r, room for
+/// what the samples miss (the exact test decides).
+const SPOTS_FIT_RADII: f64 = 0.85;
+
+/// How far apart the samples of the material are, in tool radii (see [`Gap::material`]).
+const MATERIAL_STEP_RADII: f64 = 0.1;
+
+/// How many times the material is parted among the spots of a path (see [`spots_over`]).
+const SPOT_ROUNDS: usize = 4;
+
+/// How far a spot is moved towards the nearest loop, as shares of the way, tried in turn
+/// while it still clears what it answers for (see [`Gap::spot_at`]).
+const SPOT_PULLS: [f64; 3] = [0.75, 0.5, 0.25];
 
 /// How much nearer than the tool radius a clean-up path's tool reaches the farthest point it
 /// answers for, in tool radii (see [`path_offset`]): room for rounding.
@@ -139,14 +171,13 @@ pub fn add_cleanups(
             slack: 0.1 * r,
             splits: FINEST_SPLITS,
             hints: Default::default(),
-            spot: Default::default(),
+            cover: Default::default(),
             eps: tol.eps,
         };
-        for l in &half_loops[gi] {
-            for path in gap.with_spots(gap.needed(l)) {
-                let owner = enclosing(&plan.parts, &by_level[k], path.segments[0].start());
-                found.push((owner, path));
-            }
+        let pieces = (half_loops[gi].iter()).map(|l| gap.needed(l)).collect();
+        for path in gap.clear(pieces) {
+            let owner = enclosing(&plan.parts, &by_level[k], path.segments[0].start());
+            found.push((owner, path));
         }
     }
     for (owner, path) in found {
@@ -179,9 +210,10 @@ struct Gap<'a> {
     /// (see [`SegmentIndex::distance_hinted`]): the points come one after another along the
     /// normals and the half loop.
     hints: [Cell<usize>; 3],
-    /// A point where the tool stands, a cover besides the loops while a spot is tried (see
-    /// [`Gap::spot_for`]).
-    spot: Cell<Option<Point>>,
+    /// Where the tool goes besides the loops while a spot or a path is tried: the corners of
+    /// a path of straight moves, one point for a spot; none when empty (see
+    /// [`Gap::covered_with`]).
+    cover: RefCell<Vec<Point>>,
     /// The geometric epsilon, for the spot's path against the walls.
     eps: f64,
 }
@@ -210,6 +242,200 @@ impl Gap<'_> {
             let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
             self.classify(seg, i, (t0, t1), self.slack, self.splits, subs);
         }
+    }
+
+    /// The paths that clear what the needed pieces of this gap's half loops answer for
+    /// (`loops`: by half loop, each in loop order; see [`Gap::needed`]). Pieces lying within
+    /// [`GROUP_GAPS_RADII`] of one another, across loops too (the two sides of one patch of
+    /// material between two islands), are grouped, each group as a whole: the same groups
+    /// whatever order the loops and pieces come in. A group that one spot or one straight
+    /// pass clears (see [`Gap::spot_for`], [`Gap::pass_for`]) gives way to it; the pieces of
+    /// the others are taken loop by loop (see [`Gap::with_spots`]).
+    fn clear(&self, loops: Vec<Vec<Path>>) -> Vec<Path> {
+        let mut taken: Vec<Vec<bool>> = loops.iter().map(|l| vec![false; l.len()]).collect();
+        let mut out = Vec::new();
+        // Groups tried and not taken, each tried once (a group apart from all others within
+        // the widest join stays one at the narrower ones).
+        let mut tried: HashSet<Vec<(usize, usize)>> = HashSet::new();
+        for join in GROUP_GAPS_RADII {
+            for group in self.groups(&loops, &taken, join * self.radius) {
+                if group.len() < 2 || tried.contains(&group) {
+                    continue;
+                }
+                let whole = Path {
+                    segments: (group.iter())
+                        .flat_map(|&(i, j)| loops[i][j].segments.iter().copied())
+                        .collect(),
+                    closed: false,
+                };
+                let cover = (self.spot_for(&whole))
+                    .or_else(|| self.pass_for(&whole))
+                    .or_else(|| self.path_through_spots(&whole));
+                if let Some(path) = cover {
+                    out.push(path);
+                    for &(i, j) in &group {
+                        taken[i][j] = true;
+                    }
+                } else {
+                    tried.insert(group);
+                }
+            }
+        }
+        for (pieces, taken) in loops.into_iter().zip(taken) {
+            let left = (pieces.into_iter().zip(taken))
+                .filter(|(_, t)| !t)
+                .map(|(p, _)| p)
+                .collect();
+            out.extend(self.with_spots(left));
+        }
+        out
+    }
+
+    /// The open pieces of `loops` (as loop and place in it) not yet `taken`, in groups:
+    /// joined where two lie within `join` of each other, each group in loop and place order.
+    fn groups(&self, loops: &[Vec<Path>], taken: &[Vec<bool>], join: f64) -> Vec<Vec<(usize, usize)>> {
+        let ids: Vec<(usize, usize)> = (loops.iter().enumerate())
+            .flat_map(|(i, l)| (l.iter().enumerate()).map(move |(j, p)| (i, j, p)))
+            .filter(|&(i, j, p)| !p.closed && !taken[i][j])
+            .map(|(i, j, _)| (i, j))
+            .collect();
+        let piece = |k: usize| &loops[ids[k].0][ids[k].1].segments;
+        let boxes: Vec<Aabb> = (0..ids.len()).map(|k| bbox_of(piece(k))).collect();
+        let near = |a: usize, b: usize| {
+            boxes[a].distance_to_box(&boxes[b]) < join
+                && (piece(a).iter()).any(|x| {
+                    (piece(b).iter()).any(|y| crate::geom::segment_distance(x, y, self.eps).0 < join)
+                })
+        };
+        // Swept along x: only pieces whose boxes overlap in x, widened by the gap, are
+        // measured against each other.
+        let mut by_x: Vec<usize> = (0..ids.len()).collect();
+        by_x.sort_by(|&a, &b| boxes[a].min.x.total_cmp(&boxes[b].min.x));
+        let mut sets = crate::union_find::UnionFind::new(ids.len());
+        for (n, &a) in by_x.iter().enumerate() {
+            for &b in &by_x[n + 1..] {
+                if boxes[b].min.x > boxes[a].max.x + join {
+                    break;
+                }
+                if near(a, b) {
+                    sets.union(a, b);
+                }
+            }
+        }
+        let mut groups: Vec<Vec<(usize, usize)>> = vec![Vec::new(); ids.len()];
+        for (k, &id) in ids.iter().enumerate() {
+            groups[sets.find(k)].push(id);
+        }
+        groups.retain(|g| !g.is_empty());
+        groups
+    }
+
+    /// A straight pass that clears what the pieces of `path` answer for, or None: along their
+    /// principal axis, half way across them, tried shortest first from [`PASS_TRIMS_RADII`]
+    /// in from the pieces' ends along it to their full extent; every point of it a tool
+    /// radius from the walls, and the pieces' test (see [`Gap::needed`]) finding nothing
+    /// needed with the tool along it as one more cover, reaching 0.95 r. Two long pieces on
+    /// both sides of a narrow patch give way to one pass along its middle.
+    fn pass_for(&self, path: &Path) -> Option<Path> {
+        let (mean, sxx, sxy, syy) = super::spots::outline_moments(path.segments.iter())?;
+        let axis = Vector::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
+        // Along the principal axis, then across it: two pieces on both sides of a patch as
+        // wide as it is long spread as far along their line as across.
+        [axis, axis.perp()]
+            .into_iter()
+            .find_map(|u| self.pass_along(path, mean, u))
+    }
+
+    /// [`Gap::pass_for`] along the direction `u` through `mean`.
+    fn pass_along(&self, path: &Path, mean: Point, u: Vector) -> Option<Path> {
+        let r = self.radius;
+        let v = u.perp();
+        let (mut along, mut across) = (
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (f64::INFINITY, f64::NEG_INFINITY),
+        );
+        for s in &path.segments {
+            let n = ((s.length() / (0.25 * r)).ceil() as usize).clamp(1, 1 << 12);
+            for k in 0..=n {
+                let q = s.point_at(k as f64 / n as f64) - mean;
+                let (t, h) = (q.dot(u), q.dot(v));
+                along = (along.0.min(t), along.1.max(t));
+                across = (across.0.min(h), across.1.max(h));
+            }
+        }
+        // Material a pass clears lies within 0.95 r of it, and a piece lies at most g − δ < r
+        // from what it answers for.
+        if across.1 - across.0 > 4.0 * r {
+            return None;
+        }
+        let tries = PASS_ACROSS
+            .into_iter()
+            .flat_map(|f| PASS_TRIMS_RADII.map(|trim| (f, trim)));
+        tries.into_iter().find_map(|(f, trim)| {
+            let side = v * (across.0 + f * (across.1 - across.0));
+            let (t0, t1) = (along.0 + trim * r, along.1 - trim * r);
+            if t1 - t0 < SPOT_LENGTH_RADII * r {
+                return None;
+            }
+            let (a, b) = (mean + side + u * t0, mean + side + u * t1);
+            let line = Segment::Line(Line::new(a, b));
+            if self.pocket.walls().segment_within(&line, r, self.eps) || !self.covered_with(path, &[a, b]) {
+                return None;
+            }
+            Some(Path {
+                segments: vec![line],
+                closed: false,
+            })
+        })
+    }
+
+    /// A path of straight moves through two or three spots that clears what the pieces of
+    /// `path` answer for, or None: the spots are the centres of the smallest circles round
+    /// the material the pieces answer for (sampled, see [`Gap::material`]) parted among them
+    /// (farthest first, then each sample to its nearest spot, a few times over), each circle
+    /// within [`SPOTS_FIT_RADII`]; the moves every point a tool radius from the walls, shorter
+    /// than the pieces together, and the pieces' test (see [`Gap::needed`]) finding nothing
+    /// needed with the tool along them as one more cover, reaching 0.95 r. A triangle of
+    /// material between two islands and a wall, too wide for one spot or one pass, is
+    /// cleared by a Λ over it in place of its three sides.
+    fn path_through_spots(&self, path: &Path) -> Option<Path> {
+        let r = self.radius;
+        let points = self.material(path);
+        let length: f64 = path.segments.iter().map(Segment::length).sum();
+        (2..=3).find_map(|k| {
+            let spots = spots_over(&points, k, SPOTS_FIT_RADII * r)?;
+            let moves: Vec<Segment> = (spots.windows(2))
+                .map(|w| Segment::Line(Line::new(w[0], w[1])))
+                .collect();
+            let clear_of_walls = (moves.iter()).all(|m| !self.pocket.walls().segment_within(m, r, self.eps));
+            let shorter = moves.iter().map(Segment::length).sum::<f64>() < length;
+            (clear_of_walls && shorter && self.covered_with(path, &spots)).then_some(Path {
+                segments: moves,
+                closed: false,
+            })
+        })
+    }
+
+    /// What the loops leave of what the pieces of `path` answer for, sampled: the points
+    /// along their normals out to the reach, [`MATERIAL_STEP_RADII`] apart, that no loop
+    /// covers (see [`Gap::margin`]).
+    fn material(&self, path: &Path) -> Vec<Point> {
+        let step = MATERIAL_STEP_RADII * self.radius;
+        let across = ((self.reach / step).ceil() as usize).max(1);
+        let mut out = Vec::new();
+        for s in &path.segments {
+            let n = ((s.length() / step).ceil() as usize).clamp(1, 1 << 12);
+            for k in 0..=n {
+                let t = k as f64 / n as f64;
+                let (m, normal) = (s.point_at(t), s.tangent_at(t).perp());
+                out.extend(
+                    (0..=across)
+                        .map(|j| m + normal * (self.reach * j as f64 / across as f64))
+                        .filter(|&p| self.margin(p) <= 0.0),
+                );
+            }
+        }
+        out
     }
 
     /// The needed `pieces` of a closed half loop (in loop order), each as a spot's path where
@@ -267,9 +493,7 @@ impl Gap<'_> {
     /// the tool at c as one more cover, reaching 0.95 r.
     fn spot_for(&self, path: &Path) -> Option<Path> {
         let r = self.radius;
-        let b = (path.segments.iter())
-            .map(Segment::bbox)
-            .fold(Aabb::EMPTY, |a, b| a.union(&b));
+        let b = bbox_of(&path.segments);
         if b.width() > 2.0 * r || b.height() > 2.0 * r {
             return None;
         }
@@ -290,25 +514,51 @@ impl Gap<'_> {
     }
 
     /// The spot's path to `c` (see [`Gap::spot_for`]) when the tool at `c` covers what `path`
-    /// answers for.
+    /// answers for, the spot moved towards the nearest point of the loops of the level outside
+    /// the gap as far as one of [`SPOT_PULLS`] lets it still cover that: the excursion out
+    /// to it from the loop and back is shorter.
     fn spot_at(&self, path: &Path, c: Point) -> Option<Path> {
+        let line = self.spot_line(path, c)?;
+        if !self.covered_with(path, &[c]) {
+            return None;
+        }
+        // Towards the loops of the level outside the gap: the clean-up paths are its part's,
+        // cut on the way round its loops (see `link::Linker::host_of`).
+        let pulled = self.here.nearest(c).and_then(|(q, _)| {
+            SPOT_PULLS.into_iter().find_map(|f| {
+                let p = c + (q - c) * f;
+                let line = self.spot_line(path, p)?;
+                self.covered_with(path, &[p]).then_some(line)
+            })
+        });
+        Some(Path {
+            segments: vec![pulled.unwrap_or(line)],
+            closed: false,
+        })
+    }
+
+    /// The short path ending at the spot `c` for `path`: from towards the piece's nearest
+    /// point, at most [`SPOT_LENGTH_RADII`] long; None where it comes within a tool radius of
+    /// the walls.
+    fn spot_line(&self, path: &Path, c: Point) -> Option<Segment> {
         let r = self.radius;
         let (k, _, room) = nearest_on(&path.segments, c);
         let toward = (closest_point(path.segments.get(k)?, c) - c).normalized()?;
         let line = Segment::Line(Line::new(c + toward * room.min(SPOT_LENGTH_RADII * r), c));
-        if self.pocket.walls().segment_within(&line, r, self.eps) {
-            return None;
-        }
-        self.spot.set(Some(c));
+        (!self.pocket.walls().segment_within(&line, r, self.eps)).then_some(line)
+    }
+
+    /// True when the test of `path`'s needed pieces (see [`Gap::needed`]) finds nothing
+    /// needed with the tool also along the straight moves through the points of `cover` (a
+    /// spot: one point), reaching 0.95 r round them.
+    fn covered_with(&self, path: &Path, cover: &[Point]) -> bool {
+        *self.cover.borrow_mut() = cover.to_vec();
         let mut subs = Vec::new();
         for (i, seg) in path.segments.iter().enumerate() {
             self.classify_segment(seg, i, &mut subs);
         }
-        self.spot.set(None);
-        subs.iter().all(|s| !s.needed).then(|| Path {
-            segments: vec![line],
-            closed: false,
-        })
+        self.cover.borrow_mut().clear();
+        subs.iter().all(|s| !s.needed)
     }
 
     /// Adds the stretch `t` of `seg` (the `i`-th segment of a half loop), whose points lie
@@ -358,11 +608,9 @@ impl Gap<'_> {
             Some(_) => f64::NEG_INFINITY,
             None => self.pocket.distance_hinted(p, &self.hints[2]) - self.next_distance,
         };
-        // The tool standing at the spot being tried sweeps the disc round it.
-        let by_spot = (self.spot.get()).map_or(f64::NEG_INFINITY, |c| {
-            (1.0 - REACH_MARGIN_RADII) * r - p.distance(c)
-        });
-        by_here.max(by_below).max(inside_below).max(by_spot)
+        // The tool at the spot or along the pass being tried sweeps what lies within its reach.
+        let by_cover = (1.0 - REACH_MARGIN_RADII) * r - distance_to_moves(p, &self.cover.borrow());
+        by_here.max(by_below).max(inside_below).max(by_cover)
     }
 
     /// True when every point within `slack` of the normal segment {m + u·n : 0 ≤ u ≤ reach} is
@@ -460,6 +708,88 @@ fn paths_of(half: &Contour, subs: &[SubPiece]) -> Vec<Path> {
         .collect()
 }
 
+/// The box round `segments`.
+fn bbox_of(segments: &[Segment]) -> Aabb {
+    (segments.iter())
+        .map(Segment::bbox)
+        .fold(Aabb::EMPTY, |a, b| a.union(&b))
+}
+
+/// `k` spots in an order to be passed through, each within `fit` of the `points` nearest to
+/// it, or None: the first the point farthest from the centre of the smallest circle round
+/// all, each next the point farthest from the spots so far, then [`SPOT_ROUNDS`] times each
+/// point given to its nearest spot and each spot moved to the centre of the smallest circle
+/// round its points. In order along the line through the two farthest apart.
+fn spots_over(points: &[Point], k: usize, fit: f64) -> Option<Vec<Point>> {
+    let (centre, _) = enclosing_circle(points)?;
+    let farthest_from = |spots: &[Point]| {
+        (points.iter()).max_by(|a, b| {
+            let d = |p: &Point| spots.iter().map(|s| s.distance(*p)).fold(f64::INFINITY, f64::min);
+            d(a).total_cmp(&d(b))
+        })
+    };
+    let mut spots = vec![*farthest_from(&[centre])?];
+    while spots.len() < k {
+        spots.push(*farthest_from(&spots)?);
+    }
+    let nearest = |spots: &[Point], p: Point| {
+        (0..spots.len())
+            .min_by(|&a, &b| spots[a].distance(p).total_cmp(&spots[b].distance(p)))
+            .unwrap_or(0)
+    };
+    let mut worst = f64::INFINITY;
+    for _ in 0..SPOT_ROUNDS {
+        let mut parts: Vec<Vec<Point>> = vec![Vec::new(); k];
+        for &p in points {
+            parts[nearest(&spots, p)].push(p);
+        }
+        worst = 0.0;
+        for (spot, part) in spots.iter_mut().zip(&parts) {
+            if let Some((c, rho)) = enclosing_circle(part) {
+                *spot = c;
+                worst = f64::max(worst, rho);
+            }
+        }
+    }
+    if worst > fit {
+        return None;
+    }
+    // The two farthest apart are the ends; a third lies between them.
+    let ends = (0..k)
+        .flat_map(|a| (a + 1..k).map(move |b| (a, b)))
+        .max_by(|x, y| {
+            let d = |(a, b): (usize, usize)| spots[a].distance(spots[b]);
+            d(*x).total_cmp(&d(*y))
+        })?;
+    let first = spots[ends.0];
+    spots.sort_by(|a, b| a.distance(first).total_cmp(&b.distance(first)));
+    Some(spots)
+}
+
+/// The distance from `p` to the straight moves through `corners` (one point: to it; none:
+/// infinite).
+fn distance_to_moves(p: Point, corners: &[Point]) -> f64 {
+    match corners {
+        [] => f64::INFINITY,
+        [c] => p.distance(*c),
+        _ => (corners.windows(2))
+            .map(|w| distance_to_span(p, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min),
+    }
+}
+
+/// The distance from `p` to the straight span from `a` to `b`.
+fn distance_to_span(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let length_sq = ab.dot(ab);
+    let t = if length_sq > 0.0 {
+        ((p - a).dot(ab) / length_sq).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -485,7 +815,7 @@ mod tests {
             slack: 0.1,
             splits,
             hints: Default::default(),
-            spot: Default::default(),
+            cover: Default::default(),
             eps: 1e-9,
         }
     }
@@ -592,6 +922,70 @@ mod tests {
         let farthest = |q: Point| left.iter().map(|p| p.distance(q)).fold(0.0, f64::max);
         assert!(farthest(centre) > 0.9, "{}", farthest(centre));
         assert!(farthest(c) < 0.8, "{}", farthest(c));
+    }
+
+    #[test]
+    fn pieces_beside_one_long_patch_give_way_to_one_pass() {
+        // The loop below broken over 9 mm: a strip of material under 0.8 mm high and about
+        // 7.4 mm long above the bottom edge, too long for one spot. The needed piece above it,
+        // cut in two as the pieces of two loops beside one patch are, gives way to one
+        // straight pass over the strip.
+        let pocket = square_pocket();
+        let breaks = [(15.5, 24.5)];
+        let gap = broken_gap(&pocket, &breaks);
+        let piece = (gap.needed(&square(1.9, 38.1)).into_iter())
+            .find(|p| (p.segments[0].start().x - 20.0).abs() < 6.0)
+            .expect("a piece under the break");
+        assert_eq!(piece.segments.len(), 1);
+        let s = piece.segments[0];
+        let half = |t0: f64, t1: f64| Path {
+            segments: vec![s.subsegment(t0, t1)],
+            closed: false,
+        };
+        let halves = vec![vec![half(0.0, 0.5)], vec![half(0.5, 1.0)]];
+        assert!(halves.iter().all(|h| gap.spot_for(&h[0]).is_none()));
+        let out = gap.clear(halves);
+        assert_eq!(out.len(), 1, "one pass for both");
+        let pass = &out[0].segments;
+        assert!(matches!(pass[..], [Segment::Line(_)]), "{pass:?}");
+        assert!(
+            pass[0].length() < s.length(),
+            "{} {}",
+            pass[0].length(),
+            s.length()
+        );
+        // Everything left, sampled on its own, within the pass's reach.
+        let left = left_by(&breaks);
+        assert!(left.len() > 100, "{}", left.len());
+        let farthest = (left.iter())
+            .map(|&p| crate::geom::distance_from_segment(&pass[0], p))
+            .fold(0.0, f64::max);
+        assert!(farthest < 0.95, "{farthest}");
+    }
+
+    #[test]
+    fn a_triangle_too_wide_for_one_spot_is_covered_from_a_path_through_three() {
+        // Material in a triangle 7.5 mm wide and 5 mm high (a patch between two islands and a
+        // wall), for a 6 mm tool: round it a circle of 3.9 mm, beyond one spot's fit.
+        let fit = SPOTS_FIT_RADII * 3.0;
+        let inside = |p: &Point| p.y >= 0.0 && p.y <= 5.0 * (1.0 - p.x.abs() / 3.75);
+        let points: Vec<Point> = (0..=150)
+            .flat_map(|i| (0..=100).map(move |j| Point::new(-3.75 + 0.05 * i as f64, 0.05 * j as f64)))
+            .filter(inside)
+            .collect();
+        assert!(spots_over(&points, 1, fit).is_none());
+        let spots = spots_over(&points, 3, fit).expect("three spots");
+        assert_eq!(spots.len(), 3);
+        // Every point within the fit of the path through them, the ends the two farthest apart.
+        let farthest = (points.iter())
+            .map(|&p| distance_to_moves(p, &spots))
+            .fold(0.0, f64::max);
+        assert!(farthest <= fit, "{farthest}");
+        let d = |a: usize, b: usize| spots[a].distance(spots[b]);
+        assert!(d(0, 2) >= d(0, 1) && d(0, 2) >= d(1, 2), "{spots:?}");
+        // Shorter than the triangle's three sides, what the pieces round it were.
+        let length = d(0, 1) + d(1, 2);
+        assert!(length < 0.5 * (7.5 + 2.0 * 6.25), "{length}");
     }
 
     #[test]

@@ -171,7 +171,7 @@ fn spine(
     r: f64,
     tol: &Tolerance,
 ) -> Option<Line> {
-    let (mean, sxx, sxy, syy) = outline_moments(left)?;
+    let (mean, sxx, sxy, syy) = outline_moments(left.iter().flat_map(|c| &c.segments))?;
     let u = Vector::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
     let v = u.perp();
     // Built a little inside the limit: the points are samples of the arcs.
@@ -209,12 +209,14 @@ fn spine(
     (clear_of_loop && part.outer.contains(line.start) && part.outer.contains(line.end)).then_some(line)
 }
 
-/// The centroid of the outline of `contours` and its second moments about it (xx, xy, yy),
+/// The centroid of the outline `segments` and its second moments about it (xx, xy, yy),
 /// by length: exact along lines, arcs taken as chords of pieces of [`MOMENT_PIECE`]; None for
 /// an outline of no length.
-fn outline_moments(contours: &[Contour]) -> Option<(Point, f64, f64, f64)> {
+pub(super) fn outline_moments<'a>(
+    segments: impl Iterator<Item = &'a Segment>,
+) -> Option<(Point, f64, f64, f64)> {
     let mut chords: Vec<(Point, Point)> = Vec::new();
-    for s in contours.iter().flat_map(|c| &c.segments) {
+    for s in segments {
         let pieces = match s {
             Segment::Line(_) => 1,
             Segment::Arc(a) => ((a.sweep().abs() / MOMENT_PIECE).ceil() as usize).clamp(1, 4096),
