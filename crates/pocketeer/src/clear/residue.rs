@@ -268,9 +268,10 @@ impl Gap<'_> {
                         .collect(),
                     closed: false,
                 };
-                let cover = (self.spot_for(&whole))
-                    .or_else(|| self.pass_for(&whole))
-                    .or_else(|| self.path_through_spots(&whole));
+                let cover = self.spot_for(&whole).or_else(|| {
+                    let material = self.material(&whole);
+                    (self.pass_for(&whole, &material)).or_else(|| self.path_through_spots(&whole, &material))
+                });
                 if let Some(path) = cover {
                     out.push(path);
                     for &(i, j) in &group {
@@ -336,18 +337,19 @@ impl Gap<'_> {
     /// radius from the walls, and the pieces' test (see [`Gap::needed`]) finding nothing
     /// needed with the tool along it as one more cover, reaching 0.95 r. Two long pieces on
     /// both sides of a narrow patch give way to one pass along its middle.
-    fn pass_for(&self, path: &Path) -> Option<Path> {
+    fn pass_for(&self, path: &Path, material: &[Point]) -> Option<Path> {
         let (mean, sxx, sxy, syy) = super::spots::outline_moments(path.segments.iter())?;
         let axis = Vector::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
         // Along the principal axis, then across it: two pieces on both sides of a patch as
         // wide as it is long spread as far along their line as across.
         [axis, axis.perp()]
             .into_iter()
-            .find_map(|u| self.pass_along(path, mean, u))
+            .find_map(|u| self.pass_along(path, material, mean, u))
     }
 
-    /// [`Gap::pass_for`] along the direction `u` through `mean`.
-    fn pass_along(&self, path: &Path, mean: Point, u: Vector) -> Option<Path> {
+    /// [`Gap::pass_for`] along the direction `u` through `mean`, the `material` sampled (see
+    /// [`Gap::material`]).
+    fn pass_along(&self, path: &Path, material: &[Point], mean: Point, u: Vector) -> Option<Path> {
         let r = self.radius;
         let v = u.perp();
         let (mut along, mut across) = (
@@ -378,6 +380,12 @@ impl Gap<'_> {
                 return None;
             }
             let (a, b) = (mean + side + u * t0, mean + side + u * t1);
+            // A sample of the material beyond the reach would fail the exact test (it is not
+            // covered, and the test measures within half its slack of it): no need to run it.
+            let reach = (1.0 - REACH_MARGIN_RADII) * r;
+            if material.iter().any(|&p| distance_to_span(p, a, b) > reach) {
+                return None;
+            }
             let line = Segment::Line(Line::new(a, b));
             if self.pocket.walls().segment_within(&line, r, self.eps) || !self.covered_with(path, &[a, b]) {
                 return None;
@@ -391,19 +399,18 @@ impl Gap<'_> {
 
     /// A path of straight moves through two or three spots that clears what the pieces of
     /// `path` answer for, or None: the spots are the centres of the smallest circles round
-    /// the material the pieces answer for (sampled, see [`Gap::material`]) parted among them
+    /// the material the pieces answer for (`points`, see [`Gap::material`]) parted among them
     /// (farthest first, then each sample to its nearest spot, a few times over), each circle
     /// within [`SPOTS_FIT_RADII`]; the moves every point a tool radius from the walls, shorter
     /// than the pieces together, and the pieces' test (see [`Gap::needed`]) finding nothing
     /// needed with the tool along them as one more cover, reaching 0.95 r. A triangle of
     /// material between two islands and a wall, too wide for one spot or one pass, is
     /// cleared by a Λ over it in place of its three sides.
-    fn path_through_spots(&self, path: &Path) -> Option<Path> {
+    fn path_through_spots(&self, path: &Path, points: &[Point]) -> Option<Path> {
         let r = self.radius;
-        let points = self.material(path);
         let length: f64 = path.segments.iter().map(Segment::length).sum();
         (2..=3).find_map(|k| {
-            let spots = spots_over(&points, k, SPOTS_FIT_RADII * r)?;
+            let spots = spots_over(points, k, SPOTS_FIT_RADII * r)?;
             let moves: Vec<Segment> = (spots.windows(2))
                 .map(|w| Segment::Line(Line::new(w[0], w[1])))
                 .collect();
