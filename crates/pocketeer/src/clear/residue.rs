@@ -74,8 +74,11 @@ const PASS_ACROSS: [f64; 3] = [0.5, 0.35, 0.65];
 /// what the samples miss (the exact test decides).
 const SPOTS_FIT_RADII: f64 = 0.85;
 
-/// How far apart the samples of the material are, in tool radii (see [`Gap::material`]).
-const MATERIAL_STEP_RADII: f64 = 0.1;
+/// How far apart the samples of the material are, in tool radii (see [`Gap::material`]):
+/// they only propose spots and refuse passes early, the exact test decides. At 0.1 the
+/// sampling took a quarter of the 300-hole plate's planning at 90 % stepover (1.64 s against
+/// 1.37 s at 0.2, programs the same but for four drawings, each as long or shorter).
+const MATERIAL_STEP_RADII: f64 = 0.2;
 
 /// How many times the material is parted among the spots of a path (see [`spots_over`]).
 const SPOT_ROUNDS: usize = 4;
