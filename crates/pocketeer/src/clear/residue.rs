@@ -29,8 +29,8 @@ use super::tree::enclosing;
 use super::{ClearParams, ClearPlan, Path};
 use crate::geom::PreparedPocket;
 use crate::geom::{
-    closest_point, enclosing_circle, nearest_on, outline_points, Aabb, Contour, Line, Point, Segment,
-    SegmentIndex, Tolerance, Vector,
+    bbox_of, closest_point, distance_from_segment, enclosing_circle, nearest_on, outline_points, Aabb,
+    Contour, Line, Point, Segment, SegmentIndex, Tolerance, Vector,
 };
 use crate::offset::{OffsetError, Sources};
 use std::cell::{Cell, RefCell};
@@ -265,12 +265,7 @@ impl Gap<'_> {
                 if group.len() < 2 || tried.contains(&group) {
                     continue;
                 }
-                let whole = Path {
-                    segments: (group.iter())
-                        .flat_map(|&(i, j)| loops[i][j].segments.iter().copied())
-                        .collect(),
-                    closed: false,
-                };
+                let whole = joined(group.iter().map(|&(i, j)| &loops[i][j]));
                 let cover = self.spot_for(&whole).or_else(|| {
                     let material = self.material(&whole);
                     (self.pass_for(&whole, &material)).or_else(|| self.path_through_spots(&whole, &material))
@@ -383,14 +378,16 @@ impl Gap<'_> {
                 return None;
             }
             let (a, b) = (mean + side + u * t0, mean + side + u * t1);
+            let line = Segment::Line(Line::new(a, b));
             // A sample of the material beyond the reach would fail the exact test (it is not
             // covered, and the test measures within half its slack of it): no need to run it.
-            let reach = (1.0 - REACH_MARGIN_RADII) * r;
-            if material.iter().any(|&p| distance_to_span(p, a, b) > reach) {
+            if material
+                .iter()
+                .any(|&p| distance_from_segment(&line, p) > self.reach_of_tool())
+            {
                 return None;
             }
-            let line = Segment::Line(Line::new(a, b));
-            if self.pocket.walls().segment_within(&line, r, self.eps) || !self.covered_with(path, &[a, b]) {
+            if self.near_walls(&line) || !self.covered_with(path, &[a, b]) {
                 return None;
             }
             Some(Path {
@@ -417,7 +414,7 @@ impl Gap<'_> {
             let moves: Vec<Segment> = (spots.windows(2))
                 .map(|w| Segment::Line(Line::new(w[0], w[1])))
                 .collect();
-            let clear_of_walls = (moves.iter()).all(|m| !self.pocket.walls().segment_within(m, r, self.eps));
+            let clear_of_walls = !moves.iter().any(|m| self.near_walls(m));
             let shorter = moves.iter().map(Segment::length).sum::<f64>() < length;
             (clear_of_walls && shorter && self.covered_with(path, &spots)).then_some(Path {
                 segments: moves,
@@ -473,12 +470,7 @@ impl Gap<'_> {
             run.push(i);
             if k + 1 == n || !close(i) {
                 let whole = (run.len() > 1)
-                    .then(|| Path {
-                        segments: (run.iter())
-                            .flat_map(|&j| pieces[j].segments.iter().cloned())
-                            .collect(),
-                        closed: false,
-                    })
+                    .then(|| joined(run.iter().map(|&j| &pieces[j])))
                     .and_then(|p| self.spot_for(&p));
                 match whole {
                     Some(spot) => out.push(spot),
@@ -517,7 +509,7 @@ impl Gap<'_> {
         let seg = path.segments.get(k)?;
         let (foot, normal) = (seg.point_at(t), seg.tangent_at(t).perp());
         let far = 0.5 * (self.radius - self.delta + self.reach);
-        let near = (self.reach - (1.0 - REACH_MARGIN_RADII) * r).clamp(0.0, far);
+        let near = (self.reach - self.reach_of_tool()).clamp(0.0, far);
         [0.25, 0.5, 1.0]
             .into_iter()
             .find_map(|f| self.spot_at(path, foot + normal * (near + f * (far - near))))
@@ -555,7 +547,18 @@ impl Gap<'_> {
         let (k, _, room) = nearest_on(&path.segments, c);
         let toward = (closest_point(path.segments.get(k)?, c) - c).normalized()?;
         let line = Segment::Line(Line::new(c + toward * room.min(SPOT_LENGTH_RADII * r), c));
-        (!self.pocket.walls().segment_within(&line, r, self.eps)).then_some(line)
+        (!self.near_walls(&line)).then_some(line)
+    }
+
+    /// How far round it the tool at a spot or along a pass is taken to clear: the radius less
+    /// [`REACH_MARGIN_RADII`].
+    fn reach_of_tool(&self) -> f64 {
+        (1.0 - REACH_MARGIN_RADII) * self.radius
+    }
+
+    /// True when the straight move `s` comes within a tool radius of the walls.
+    fn near_walls(&self, s: &Segment) -> bool {
+        self.pocket.walls().segment_within(s, self.radius, self.eps)
     }
 
     /// True when the test of `path`'s needed pieces (see [`Gap::needed`]) finds nothing
@@ -619,7 +622,7 @@ impl Gap<'_> {
             None => self.pocket.distance_hinted(p, &self.hints[2]) - self.next_distance,
         };
         // The tool at the spot or along the pass being tried sweeps what lies within its reach.
-        let by_cover = (1.0 - REACH_MARGIN_RADII) * r - distance_to_moves(p, &self.cover.borrow());
+        let by_cover = self.reach_of_tool() - distance_to_moves(p, &self.cover.borrow());
         by_here.max(by_below).max(inside_below).max(by_cover)
     }
 
@@ -718,11 +721,13 @@ fn paths_of(half: &Contour, subs: &[SubPiece]) -> Vec<Path> {
         .collect()
 }
 
-/// The box round `segments`.
-fn bbox_of(segments: &[Segment]) -> Aabb {
-    (segments.iter())
-        .map(Segment::bbox)
-        .fold(Aabb::EMPTY, |a, b| a.union(&b))
+/// The segments of `pieces` one after another, as one open path (for the coverage tests,
+/// which take each segment on its own: the pieces need not meet).
+fn joined<'p>(pieces: impl Iterator<Item = &'p Path>) -> Path {
+    Path {
+        segments: pieces.flat_map(|p| p.segments.iter().copied()).collect(),
+        closed: false,
+    }
 }
 
 /// `k` spots in an order to be passed through, each within `fit` of the `points` nearest to
@@ -783,21 +788,9 @@ fn distance_to_moves(p: Point, corners: &[Point]) -> f64 {
         [] => f64::INFINITY,
         [c] => p.distance(*c),
         _ => (corners.windows(2))
-            .map(|w| distance_to_span(p, w[0], w[1]))
+            .map(|w| distance_from_segment(&Segment::Line(Line::new(w[0], w[1])), p))
             .fold(f64::INFINITY, f64::min),
     }
-}
-
-/// The distance from `p` to the straight span from `a` to `b`.
-fn distance_to_span(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let length_sq = ab.dot(ab);
-    let t = if length_sq > 0.0 {
-        ((p - a).dot(ab) / length_sq).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
 }
 
 #[cfg(test)]
@@ -968,7 +961,7 @@ mod tests {
         let left = left_by(&breaks);
         assert!(left.len() > 100, "{}", left.len());
         let farthest = (left.iter())
-            .map(|&p| crate::geom::distance_from_segment(&pass[0], p))
+            .map(|&p| distance_from_segment(&pass[0], p))
             .fold(0.0, f64::max);
         assert!(farthest < 0.95, "{farthest}");
     }
