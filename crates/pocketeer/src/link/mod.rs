@@ -414,25 +414,60 @@ impl<'a> Linker<'a> {
 
     /// Cuts the small leaves of `parent`, just cut, and its plain leaves not cut on the way
     /// round its paths, nearest first: each reached at depth through the parent's region
-    /// (cleared but for the leaves' own remains).
-    fn cut_small_leaves(&mut self, parent: usize, mut leaves: Vec<usize>) {
+    /// (cleared but for the leaves' own remains). The parent's clean-up paths `deferred` to
+    /// them (see [`Linker::cut_part`]) are cut on the way round the loop of the leaf each
+    /// names, or, naming none, whenever one is nearer than every leaf left; a leaf of one
+    /// loop cuts its own clean-up paths on its way round where it can (see
+    /// [`Linker::host_of`]), the others after its loops, nearest first.
+    fn cut_small_leaves(
+        &mut self,
+        parent: usize,
+        mut leaves: Vec<usize>,
+        deferred: Vec<(Option<usize>, Path)>,
+    ) {
         let plan = self.plan();
         let cut = [parent];
         let reach = Reach {
             distance: plan.parts[parent].distance,
             cut: &cut,
         };
-        while !leaves.is_empty() {
+        let (mut loose, mut hosted): (Vec<_>, Vec<_>) = deferred.into_iter().partition(|d| d.0.is_none());
+        while !leaves.is_empty() || !loose.is_empty() {
             let here = self.here();
-            let k = nearest(&leaves, |&c| {
-                walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here)
-            });
+            let to_leaf = |c: usize| walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here);
+            let k = nearest(&leaves, |&c| to_leaf(c));
+            let j = nearest(&loose, |(_, p)| walk::distance_to_start(p, here));
+            let nearest_leaf = leaves.get(k).map_or(f64::INFINITY, |&c| to_leaf(c));
+            if loose
+                .get(j)
+                .is_some_and(|(_, p)| walk::distance_to_start(p, here) < nearest_leaf)
+            {
+                let (_, path) = loose.swap_remove(j);
+                self.cut_path(parent, &path, false, reach);
+                continue;
+            }
             let l = leaves.swap_remove(k);
             let leaf = &plan.parts[l];
             self.uncut.cut(l);
-            self.cut_path(l, &loop_path(&leaf.outer.segments), false, reach);
-            // A plain leaf's nested parts, each from the one around it.
             let chain = self.chain(l).unwrap_or_else(|| vec![l]);
+            let outer = loop_path(&leaf.outer.segments);
+            // On the way round its loop, the parent's clean-up paths given to it, and where the
+            // leaf is one loop, its own that the loop passes near (they lie inside it).
+            let (mine, others): (Vec<_>, Vec<_>) = hosted.into_iter().partition(|d| d.0 == Some(l));
+            hosted = others;
+            let mut on_the_way: Vec<Excursion> = mine.into_iter().map(|d| Excursion::Cleanup(d.1)).collect();
+            let mut hosted_own = Vec::new();
+            if chain.len() == 1 {
+                for (i, c) in leaf.cleanups.iter().enumerate() {
+                    if self.host_of(c, &outer, &[]).is_some() {
+                        self.hosted += 1;
+                        on_the_way.push(Excursion::Cleanup(c.clone()));
+                        hosted_own.push(i);
+                    }
+                }
+            }
+            self.cut_path_with(l, &outer, &on_the_way, false, reach);
+            // A plain leaf's nested parts, each from the one around it.
             for w in chain.windows(2) {
                 let cut = [w[0]];
                 let reach = Reach {
@@ -444,7 +479,9 @@ impl<'a> Linker<'a> {
             // Then the clean-up paths of all of them, nearest first, each from the part around
             // its part (they lie between a part's loop and the loop inside it, both cut now).
             let mut items: Vec<(usize, &Path)> = (chain.iter())
-                .flat_map(|&c| plan.parts[c].paths().map(move |p| (c, p)))
+                .flat_map(|&c| plan.parts[c].paths().enumerate().map(move |(i, p)| (c, i, p)))
+                .filter(|&(c, i, _)| c != l || !hosted_own.contains(&i))
+                .map(|(c, _, p)| (c, p))
                 .collect();
             while !items.is_empty() {
                 let here = self.here();
@@ -472,7 +509,23 @@ impl<'a> Linker<'a> {
     /// its point nearest to the leaf when the leaf's loop is within the tool radius there
     /// (the step across then cuts only what the leaf's loop is about to cut). The leaves
     /// that are not, returned, are cut after the part from the stock it cleared.
-    fn cut_part(&mut self, n: usize, mut first: bool, reach: Reach, along: &[usize]) -> Vec<usize> {
+    ///
+    /// The part's clean-up paths that go with those leaves and with the leaves `after` (the
+    /// small leaves cut after it), returned too, are cut with them (see
+    /// [`Linker::cut_small_leaves`]): each that a leaf's loop can cut on its way round, from
+    /// nearer than any loop of the part, with the leaf it names; each that no loop can, with
+    /// one end within reach of a leaf's loop, among the leaves (none). Cut among the part's
+    /// own paths before the leaves, such paths were joined by straight moves through the
+    /// leaves' stock or round them: on the 90 % rectangle, between two islands and a wall,
+    /// along the edge of the triangle there, which its loop then followed cutting nothing.
+    fn cut_part(
+        &mut self,
+        n: usize,
+        mut first: bool,
+        reach: Reach,
+        along: &[usize],
+        after: &[usize],
+    ) -> (Vec<usize>, Vec<(Option<usize>, Path)>) {
         let part = &self.plan().parts[n];
         // The part's loops, each with the clean-up paths cut on the way round it, and the
         // loops round islands with the index among the part's holes (those cut already, right
@@ -484,14 +537,29 @@ impl<'a> Linker<'a> {
             .map(|(j, h)| ((loop_path(&h.segments), Vec::new()), Some(j)))
             .unzip();
         let mut loose = Vec::new();
+        // The leaves cut after the part (see `cut_small_leaves`): a clean-up path that the loop
+        // of one passes nearer than the part's own loops is cut on the way round it. Beside a
+        // leaf, the straight way from one such path to the next ran through the leaf's stock
+        // the leaf's loop then went round again, cutting nothing.
+        let later: Vec<usize> = (along.iter().copied())
+            .filter(|&l| self.waits_for_parent(l))
+            .chain(after.iter().copied())
+            .collect();
+        let mut deferred = Vec::new();
         for c in &part.cleanups {
-            match self.host_of(c, &outer.0, &items) {
-                Some(k) => {
+            let on_part = self.host_of(c, &outer.0, &items);
+            match (on_part, self.leaf_host_of(c, &later)) {
+                (_, Some((leaf, d))) if on_part.is_none_or(|(_, e)| d < e) => {
+                    self.hosted += 1;
+                    deferred.push((Some(leaf), c.clone()));
+                }
+                (Some((k, _)), _) => {
                     self.hosted += 1;
                     let host = if k == 0 { &mut outer.1 } else { &mut items[k - 1].1 };
                     host.push(Excursion::Cleanup(c.clone()));
                 }
-                None => loose.push((c.clone(), Vec::new())),
+                _ if self.beside_a_leaf(c, &later) => deferred.push((None, c.clone())),
+                _ => loose.push((c.clone(), Vec::new())),
             }
         }
         // A finishing loop has leads, nothing on its way round (no part has spots beside one).
@@ -555,7 +623,7 @@ impl<'a> Linker<'a> {
             let spot = spots.swap_remove(k);
             self.cut_path(n, spot, false, reach);
         }
-        leaves.left
+        (leaves.left, deferred)
     }
 
     /// Cuts the part `n` ([`Linker::cut_part`]) and the leaves that wait for it
@@ -571,8 +639,9 @@ impl<'a> Linker<'a> {
         let plan = self.plan();
         let open = plan.allowance == 0.0 && plan.parts[n].cleanups.iter().any(|c| !c.closed);
         let cut = |linker: &mut Linker, mut after: Vec<usize>| {
-            after.extend(linker.cut_part(n, first, reach, along));
-            linker.cut_small_leaves(n, after);
+            let (left, deferred) = linker.cut_part(n, first, reach, along, &after);
+            after.extend(left);
+            linker.cut_small_leaves(n, after, deferred);
         };
         if !open || self.hosting.is_some() {
             return cut(self, after);
@@ -598,6 +667,29 @@ impl<'a> Linker<'a> {
             (self.down, self.last, self.cut_early, self.uncut) =
                 (tried.down, tried.last, tried.cut_early, tried.uncut);
         }
+    }
+
+    /// True when an end of the clean-up path `c` lies within [`HOST_REACH_RADII`] tool radii
+    /// of the loop of one of the `leaves` cut after its part (see
+    /// [`Linker::cut_small_leaves`]): it is cut among them, the tool going on to whichever is
+    /// nearest, instead of among the part's own paths before the leaves, when the way from it
+    /// to the next path goes round or through a leaf not cut yet.
+    fn beside_a_leaf(&self, c: &Path, leaves: &[usize]) -> bool {
+        let (b, reach) = (bbox_of(&c.segments), self.host_reach());
+        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+        (leaves.iter()).any(|&l| {
+            let outer = &self.plan().parts[l].outer.segments;
+            self.boxes[l].distance_to_box(&b) <= reach
+                && ends.iter().any(|&e| nearest_point(outer, e).distance(e) <= reach)
+        })
+    }
+
+    /// True when the plain leaf `l` (see [`Linker::is_plain_leaf`]) is cut after its parent
+    /// rather than on the way round its parent's loops: it has clean-up paths or spots,
+    /// which are cut from the parent's cleared stock.
+    fn waits_for_parent(&self, l: usize) -> bool {
+        let parts = &self.plan().parts;
+        (self.chain(l).unwrap_or_default().iter()).any(|&c| parts[c].paths().next().is_some())
     }
 
     /// Where the linking is now (see [`Linker::cut_part_timed`]).
@@ -644,7 +736,7 @@ impl<'a> Linker<'a> {
     /// clean-up on the 90 % rectangle; allowed for paths up to a tool radius long, before the
     /// faster way was chosen part by part, it made the 70 % one 3.6 s faster and the 90 % one
     /// 5.8 s slower), and for the finishing loop (it has leads).
-    fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<usize> {
+    fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<(usize, f64)> {
         if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
             return None;
         }
@@ -652,7 +744,23 @@ impl<'a> Linker<'a> {
         (loops.enumerate())
             .filter_map(|(k, l)| self.hosts(l, c, true).map(|d| (k, d)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(k, _)| k)
+    }
+
+    /// Of the `leaves` (parts cut after the clean-up path `c`'s part, see
+    /// [`Linker::cut_small_leaves`]), the one whose loop cuts `c` on its way round, as
+    /// [`Linker::host_of`] chooses among a part's loops, and how far it passes.
+    fn leaf_host_of(&self, c: &Path, leaves: &[usize]) -> Option<(usize, f64)> {
+        if leaves.is_empty() || c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
+            return None;
+        }
+        let near = bbox_of(&c.segments).inflated(self.host_reach());
+        (leaves.iter())
+            .filter(|&&l| self.boxes[l].intersects(&near))
+            .filter_map(|&l| {
+                let outer = loop_path(&self.plan().parts[l].outer.segments);
+                self.hosts(&outer, c, true).map(|d| (l, d))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
     /// How far the open path `c` lies from the loop `l` when `l` can cut it on its way round
@@ -1429,11 +1537,12 @@ impl<'a> LeavesBeside<'a> {
                 }
             }
             // A leaf with clean-up paths is cut after the part (see `cut_small_leaves`).
-            let plan = linker.plan();
             let chain = linker.chain(self.ids[l]).unwrap_or_default();
-            let cleanups = chain.iter().any(|&c| plan.parts[c].paths().next().is_some());
             match nearest {
-                Some((_, _, p, q)) if !cleanups && linker.stays_inside(p, q, self.part.distance) => {
+                Some((_, _, p, q))
+                    if !linker.waits_for_parent(self.ids[l])
+                        && linker.stays_inside(p, q, self.part.distance) =>
+                {
                     item.1.push(Excursion::Leaf(self.ids[l], chain, p));
                 }
                 _ => self.left.push(self.ids[l]),

@@ -541,7 +541,7 @@ fn a_long_way_across_at_depth_goes_over_the_top_when_that_is_faster() {
 fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
     // At 90 % stepover the levels leave residues between the loops round the islands and the
     // loops inside them: clean-up paths. Each one whose ends both lie within a tool diameter
-    // of the nearest point of a loop of its part is cut from that loop, out and back, not
+    // of the nearest point of a loop of its part is cut from a loop, out and back, not
     // reached by a link of its own (when that way is chosen: see the next test), also when
     // one end lies beyond the tool's disc there (before 495456c, cut as its own item). The
     // linking bench's rectangle with 8 round islands.
@@ -559,8 +559,13 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
     assert_no_gouge(&l.toolpath, &prepared);
     // A tool diameter.
     let reach = 6.0;
+    // A loop of the part, or of a part inside it: a leaf cut after the part cuts the clean-up
+    // paths its loop passes nearer than the part's own (see `Linker::cut_part`).
     let on_loop = |part: &Part, p: Point| {
-        part.loops()
+        let inside = part.children.iter().map(|&c| &plan.parts[c]);
+        std::iter::once(part)
+            .chain(inside)
+            .flat_map(|n| n.loops())
             .flat_map(|c| &c.segments)
             .any(|s| distance_from_segment(s, p) < 1e-6)
     };
@@ -608,6 +613,62 @@ fn clean_up_paths_beside_a_loop_are_cut_on_its_way_round() {
         beyond_radius >= 4,
         "{beyond_radius} of them beyond the tool's disc"
     );
+}
+
+#[test]
+fn the_loops_of_leaves_cut_after_the_loops_round_them_all_meet_stock() {
+    // At 90 % stepover the triangles between two of the 8-island rectangle's islands and a
+    // wall are leaves cut after the loops round them, and the part round them leaves clean-up
+    // paths by their corners. Cut one after the other, those paths were joined by straight
+    // moves along the triangles' edges, through the triangles' stock, and each triangle's
+    // loop then went along its edge cutting nothing: 134 mm of such loops in the program at
+    // the linking bench's depth. Each such path now goes to the loop of the leaf that passes
+    // nearest, and is cut on its way round or among the leaves. Replayed, the loops of the
+    // leaves meet stock but for a few millimetres.
+    use crate::simulate::classify::{classify, MoveKind};
+    let (l, plan, _) = linked_plan(&eight_island_rectangle(), 5.4, Entry::Helix);
+    let settings = crate::post::ProgramSettings::default();
+    let text = crate::post::write_gcode(&l.toolpath, &settings, crate::post::Dialect::LinuxCnc);
+    let program = crate::simulate::read_program(&text).unwrap();
+    let kinds = classify(&program.moves, plan.tool_radius);
+    let leaves: Vec<&Part> = (plan.parts.iter())
+        .filter(|p| p.parent.is_some() && p.children.is_empty() && p.holes.is_empty())
+        .collect();
+    let on_a_leaf = |p: Point| {
+        (leaves.iter().flat_map(|n| &n.outer.segments)).any(|s| distance_from_segment(s, p) < 1e-3)
+    };
+    let (mut on_leaves, mut idle) = (0.0, 0.0);
+    for (m, k) in program.moves.iter().zip(&kinds) {
+        let s = m.footprint();
+        if m.from.z != m.to.z || !on_a_leaf(s.start()) || !on_a_leaf(s.point_at(0.5)) {
+            continue;
+        }
+        on_leaves += m.length();
+        if *k == MoveKind::Link {
+            idle += m.length();
+        }
+    }
+    assert!(on_leaves > 500.0, "{on_leaves} mm along the leaves' loops");
+    assert!(idle < 5.0, "{idle} mm of the leaves' loops cut nothing");
+    // The clean-up paths with no loop to cut them on its way round are cut among the leaves
+    // when one passes within reach: the passes along the lenses between the rows of islands
+    // go from one diamond between four islands to the next, not round the diamonds to the
+    // next pass and back later: 587 mm at depth off the plan's paths, where it was 913 mm
+    // before these paths went to the leaves.
+    let paths: Vec<&Segment> = (plan.parts.iter())
+        .flat_map(|p| {
+            p.loops()
+                .flat_map(|c| &c.segments)
+                .chain(p.paths().flat_map(|c| &c.segments))
+        })
+        .collect();
+    let on_paths = |p: Point| paths.iter().any(|q| distance_from_segment(q, p) < 1e-3);
+    let off: f64 = (program.moves.iter())
+        .filter(|m| m.from.z == -2.0 && m.to.z == -2.0 && m.motion != crate::simulate::gcode::Motion::Rapid)
+        .filter(|m| !(on_paths(m.footprint().start()) && on_paths(m.footprint().point_at(0.5))))
+        .map(|m| m.length())
+        .sum();
+    assert!(off < 650.0, "{off} mm at depth off the plan's paths");
 }
 
 #[test]
