@@ -119,6 +119,7 @@ impl<'a> Linker<'a> {
             }
             None if self.stays_inside(here, back_to, inner_distance) => {
                 self.path.line(Point3::at(back_to, self.z), Feed::Cut);
+                self.stepped_out = Some(self.path.moves.len());
                 self.last = outer;
             }
             None => {}

@@ -31,7 +31,7 @@ mod walk;
 
 pub use detour::detour;
 pub use entry::Helix;
-pub use order::{tour, tour_length};
+pub use order::{path_order, tour, tour_length};
 
 use crate::clear::{ClearPlan, Part, Path};
 use crate::geom::PreparedPocket;
@@ -282,6 +282,7 @@ fn link_hosting(
         hosting,
         hosted: 0,
         helices: Vec::new(),
+        stepped_out: None,
     };
     // Each separate piece of the job (a root part of a pocket) is cut through all its passes
     // before the next; the pieces in a short tour over the middles of their outer loops.
@@ -365,6 +366,10 @@ struct Linker<'a> {
     /// helix looked for about all of a large part's paths took 290 ms of the 300-hole plate's
     /// job at 85 % stepover, each time.
     helices: Vec<FoundHelix>,
+    /// The number of moves right after the straight step back out from the loops round one
+    /// island (see [`Linker::leave_ladder`]): a retract right after it leaves from where the
+    /// step began instead, the step being of no use then.
+    stepped_out: Option<usize>,
 }
 
 /// Where the linking was before a part was cut, to try cutting it another way (see
@@ -478,15 +483,24 @@ impl<'a> Linker<'a> {
             }
             // Then the clean-up paths of all of them, nearest first, each from the part around
             // its part (they lie between a part's loop and the loop inside it, both cut now).
-            let mut items: Vec<(usize, &Path)> = (chain.iter())
+            let items: Vec<(usize, &Path)> = (chain.iter())
                 .flat_map(|&c| plan.parts[c].paths().enumerate().map(move |(i, p)| (c, i, p)))
                 .filter(|&(c, i, _)| c != l || !hosted_own.contains(&i))
                 .map(|(c, _, p)| (c, p))
                 .collect();
-            while !items.is_empty() {
-                let here = self.here();
-                let k = nearest(&items, |(_, p)| walk::distance_to_start(p, here));
-                let (c, item) = items.swap_remove(k);
+            // In the order of least travel on to the nearest of what is cut next, where they
+            // are few: nearest first, the tool left the diamond between four islands at
+            // 90 % stepover at its far side from the next.
+            let ends = |p: &Path| (p.segments[0].start(), p.segments[p.segments.len() - 1].end());
+            let here = self.here();
+            let next = (leaves
+                .iter()
+                .map(|&c| nearest_point(&plan.parts[c].outer.segments, here)))
+            .chain(loose.iter().map(|(_, p)| ends(p).0))
+            .min_by(|a, b| a.distance(here).total_cmp(&b.distance(here)));
+            let ways: Vec<(Point, Point)> = items.iter().map(|(_, p)| ends(p)).collect();
+            let order = path_order(&ways, here, next);
+            for (c, item) in order.into_iter().map(|k| items[k]) {
                 let around = [plan.parts[c].parent.unwrap_or(parent)];
                 let reach = Reach {
                     distance: plan.parts[around[0]].distance,
@@ -719,6 +733,7 @@ impl<'a> Linker<'a> {
             uncut: std::mem::take(&mut self.uncut),
         };
         self.down = mark.down;
+        self.stepped_out = None;
         tried
     }
 
@@ -886,6 +901,7 @@ impl<'a> Linker<'a> {
         }
         self.down = true;
         self.last = (segments, item.closed);
+        self.stepped_out = None;
     }
 
     /// Follows the walk `segments` of a loop, cutting each of `cleanups` on the way: where the
@@ -1163,6 +1179,9 @@ impl<'a> Linker<'a> {
     /// cut its way down to (every pass clears its part down from the floor of the one before),
     /// as `check` accepts and FreeCAD and most CAM programs retract.
     fn retract(&mut self) {
+        if self.stepped_out.take() == Some(self.path.moves.len()) {
+            self.path.moves.pop();
+        }
         let p = self.path.position();
         if p.z < self.params.safe_z {
             self.path.rapid(Point3::new(p.x, p.y, self.params.safe_z));

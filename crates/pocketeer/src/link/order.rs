@@ -43,6 +43,75 @@ pub fn tour(places: &[Point], start: Point) -> Vec<usize> {
     order
 }
 
+/// Most paths [`path_order`] orders by trying every order: 6, 720 orders.
+pub const MAX_EXACT_PATHS: usize = 6;
+
+/// The order to cut open `paths` (each given by its two ends, cut from whichever is nearer the
+/// tool) in, from `start` and then on to `end` where the tool goes next: the order of least
+/// travel, every order tried, for up to [`MAX_EXACT_PATHS`] paths; nearest first beyond.
+///
+/// ```
+/// use pocketeer::geom::Point;
+/// use pocketeer::link::path_order;
+/// let p = Point::new;
+/// let dot = |x: f64| (p(x, 0.0), p(x, 0.0));
+/// // Nearest first would go to 1 and back past the start to 4: on towards 10, 1 comes last.
+/// let order = path_order(&[dot(4.0), dot(-1.0)], p(0.0, 0.0), Some(p(10.0, 0.0)));
+/// assert_eq!(order, vec![1, 0]);
+/// ```
+pub fn path_order(paths: &[(Point, Point)], start: Point, end: Option<Point>) -> Vec<usize> {
+    let n = paths.len();
+    // The travel through `order`: each path entered at its end nearer the tool.
+    let travel = |order: &[usize]| {
+        let (mut at, mut length) = (start, 0.0);
+        for &i in order {
+            let (a, b) = paths[i];
+            let (entry, exit) = if a.distance(at) <= b.distance(at) {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            length += at.distance(entry);
+            at = exit;
+        }
+        length + end.map_or(0.0, |e| at.distance(e))
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    if n > MAX_EXACT_PATHS {
+        let mut at = start;
+        for k in 0..n {
+            let near = |i: usize| paths[i].0.distance(at).min(paths[i].1.distance(at));
+            let j = (k..n)
+                .min_by(|&x, &y| near(order[x]).total_cmp(&near(order[y])))
+                .unwrap_or(k);
+            order.swap(k, j);
+            let (a, b) = paths[order[k]];
+            at = if a.distance(at) <= b.distance(at) { b } else { a };
+        }
+        return order;
+    }
+    let mut best = (travel(&order), order.clone());
+    // Every other order, by Heap's algorithm.
+    let mut c = vec![0; n];
+    let mut i = 1;
+    while i < n {
+        if c[i] < i {
+            let j = if i % 2 == 0 { 0 } else { c[i] };
+            order.swap(j, i);
+            let t = travel(&order);
+            if t < best.0 - 1e-9 {
+                best = (t, order.clone());
+            }
+            c[i] += 1;
+            i = 1;
+        } else {
+            c[i] = 0;
+            i += 1;
+        }
+    }
+    best.1
+}
+
 /// Reverses stretches of the open tour from `start` through `order` while that shortens it.
 fn two_opt(order: &mut [usize], places: &[Point], start: Point) {
     let n = order.len();
