@@ -672,6 +672,67 @@ fn the_loops_of_leaves_cut_after_the_loops_round_them_all_meet_stock() {
 }
 
 #[test]
+fn the_tool_retracts_from_where_it_cut_not_after_a_step_through_cleared_stock() {
+    // Leaving the loops round one island, the tool stepped straight back out to the outermost
+    // of them so that the links onward were as without them; where it then retracted, that
+    // step cut nothing: on the linking bench's 8-island rectangle (corners of radius 10) at
+    // 90 % stepover, 3 mm deep, 5.4 mm before each of seven retracts. Replayed, the feed
+    // moves right before retracts that meet no stock are a few millimetres in all.
+    use crate::simulate::classify::{classify, MoveKind};
+    let (p, line) = (Point::new, |a, b| Segment::Line(crate::geom::Line::new(a, b)));
+    let corner = |x: f64, y: f64, from: f64| {
+        Segment::Arc(Arc::new(
+            p(x, y),
+            10.0,
+            from.to_radians(),
+            std::f64::consts::FRAC_PI_2,
+        ))
+    };
+    let boundary = Contour::new(vec![
+        line(p(10.0, 0.0), p(190.0, 0.0)),
+        corner(190.0, 10.0, -90.0),
+        line(p(200.0, 10.0), p(200.0, 110.0)),
+        corner(190.0, 110.0, 0.0),
+        line(p(190.0, 120.0), p(10.0, 120.0)),
+        corner(10.0, 110.0, 90.0),
+        line(p(0.0, 110.0), p(0.0, 10.0)),
+        corner(10.0, 10.0, 180.0),
+    ]);
+    let pocket = Pocket {
+        boundary,
+        ..eight_island_rectangle()
+    };
+    let (plan, prepared) = planned(&pocket, 5.4);
+    let deep = LinkParams {
+        depth: 3.0,
+        step_down: 3.0,
+        ..params(Entry::Helix)
+    };
+    let l = link(&[(&prepared, &plan)], &deep, &Tolerance::default()).unwrap();
+    assert_no_gouge(&l.toolpath, &prepared);
+    let settings = crate::post::ProgramSettings::default();
+    let text = crate::post::write_gcode(&l.toolpath, &settings, crate::post::Dialect::LinuxCnc);
+    let program = crate::simulate::read_program(&text).unwrap();
+    let kinds = classify(&program.moves, plan.tool_radius);
+    let (mut retracts, mut idle) = (0, Vec::new());
+    for k in 1..program.moves.len() {
+        if kinds[k] != MoveKind::Retract || program.moves[k].from.z > -2.9 {
+            continue;
+        }
+        retracts += 1;
+        let before = &program.moves[k - 1];
+        if kinds[k - 1] == MoveKind::Link && before.from.z == before.to.z {
+            idle.push(before.length());
+        }
+    }
+    assert!(retracts >= 5, "{retracts} retracts from depth");
+    // Seven steps of 5.4 mm before; two moves of 3.4 and 3.7 mm remain, the last of a
+    // clean-up path whose stock something else cut.
+    let total: f64 = idle.iter().sum();
+    assert!(total < 10.0, "retracts after {idle:?} mm through cleared stock");
+}
+
+#[test]
 fn clean_up_paths_are_cut_the_faster_way_part_by_part() {
     // Excursions from the loops save time on the two-island rectangle at 70 % stepover; on an
     // island grid (18 mm apart) at 80 % the clean-up paths between the islands are cut
