@@ -23,7 +23,7 @@ mod tree;
 
 use crate::geom::Pocket;
 use crate::geom::PreparedPocket;
-use crate::geom::{Contour, Segment, Tolerance};
+use crate::geom::{Contour, Point, Segment, Tolerance};
 use thiserror::Error;
 
 /// How a pocket is cleared.
@@ -93,6 +93,24 @@ pub struct Path {
     pub segments: Vec<Segment>,
     /// True when the last segment ends where the first starts.
     pub closed: bool,
+}
+
+impl Path {
+    /// Where the path starts and where it ends (the same point for a closed one).
+    ///
+    /// ```
+    /// use pocketeer::clear::Path;
+    /// use pocketeer::geom::{Line, Point, Segment};
+    /// let (a, b) = (Point::new(0.0, 0.0), Point::new(3.0, 0.0));
+    /// let path = Path { segments: vec![Segment::Line(Line::new(a, b))], closed: false };
+    /// assert_eq!(path.ends(), (a, b));
+    /// ```
+    pub fn ends(&self) -> (Point, Point) {
+        (
+            self.segments[0].start(),
+            self.segments[self.segments.len() - 1].end(),
+        )
+    }
 }
 
 /// One connected part of one level: an outer loop and the loops around the islands inside it.

@@ -439,10 +439,12 @@ impl<'a> Linker<'a> {
         let (mut loose, mut hosted): (Vec<_>, Vec<_>) = deferred.into_iter().partition(|d| d.0.is_none());
         while !leaves.is_empty() || !loose.is_empty() {
             let here = self.here();
-            let to_leaf = |c: usize| walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here);
-            let k = nearest(&leaves, |&c| to_leaf(c));
+            let to_leaf: Vec<f64> = (leaves.iter())
+                .map(|&c| walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here))
+                .collect();
+            let k = nearest(&to_leaf, |&d| d);
             let j = nearest(&loose, |(_, p)| walk::distance_to_start(p, here));
-            let nearest_leaf = leaves.get(k).map_or(f64::INFINITY, |&c| to_leaf(c));
+            let nearest_leaf = to_leaf.get(k).copied().unwrap_or(f64::INFINITY);
             if loose
                 .get(j)
                 .is_some_and(|(_, p)| walk::distance_to_start(p, here) < nearest_leaf)
@@ -491,14 +493,13 @@ impl<'a> Linker<'a> {
             // In the order of least travel on to the nearest of what is cut next, where they
             // are few: nearest first, the tool left the diamond between four islands at
             // 90 % stepover at its far side from the next.
-            let ends = |p: &Path| (p.segments[0].start(), p.segments[p.segments.len() - 1].end());
             let here = self.here();
             let next = (leaves
                 .iter()
                 .map(|&c| nearest_point(&plan.parts[c].outer.segments, here)))
-            .chain(loose.iter().map(|(_, p)| ends(p).0))
+            .chain(loose.iter().map(|(_, p)| p.ends().0))
             .min_by(|a, b| a.distance(here).total_cmp(&b.distance(here)));
-            let ways: Vec<(Point, Point)> = items.iter().map(|(_, p)| ends(p)).collect();
+            let ways: Vec<(Point, Point)> = items.iter().map(|(_, p)| p.ends()).collect();
             let order = path_order(&ways, here, next);
             for (c, item) in order.into_iter().map(|k| items[k]) {
                 let around = [plan.parts[c].parent.unwrap_or(parent)];
@@ -690,11 +691,13 @@ impl<'a> Linker<'a> {
     /// to the next path goes round or through a leaf not cut yet.
     fn beside_a_leaf(&self, c: &Path, leaves: &[usize]) -> bool {
         let (b, reach) = (bbox_of(&c.segments), self.host_reach());
-        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+        let (start, end) = c.ends();
         (leaves.iter()).any(|&l| {
             let outer = &self.plan().parts[l].outer.segments;
             self.boxes[l].distance_to_box(&b) <= reach
-                && ends.iter().any(|&e| nearest_point(outer, e).distance(e) <= reach)
+                && [start, end]
+                    .iter()
+                    .any(|&e| nearest_point(outer, e).distance(e) <= reach)
         })
     }
 
@@ -752,43 +755,47 @@ impl<'a> Linker<'a> {
     /// faster way was chosen part by part, it made the 70 % one 3.6 s faster and the 90 % one
     /// 5.8 s slower), and for the finishing loop (it has leads).
     fn host_of(&self, c: &Path, outer: &Path, holes: &[(Path, Vec<Excursion>)]) -> Option<(usize, f64)> {
-        if c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
+        if !self.may_host(c) {
             return None;
         }
         let loops = std::iter::once(outer).chain(holes.iter().map(|h| &h.0));
         (loops.enumerate())
-            .filter_map(|(k, l)| self.hosts(l, c, true).map(|d| (k, d)))
+            .filter_map(|(k, l)| self.hosts(&l.segments, c, true).map(|d| (k, d)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// True when the clean-up path `c` may be cut on a loop's way round at all: it is open,
+    /// the loops have no leads (no finishing allowance), and hosting is not switched off (see
+    /// [`Linker::host_of`]).
+    fn may_host(&self, c: &Path) -> bool {
+        !c.closed && self.plan().allowance == 0.0 && self.hosting != Some(false)
     }
 
     /// Of the `leaves` (parts cut after the clean-up path `c`'s part, see
     /// [`Linker::cut_small_leaves`]), the one whose loop cuts `c` on its way round, as
     /// [`Linker::host_of`] chooses among a part's loops, and how far it passes.
     fn leaf_host_of(&self, c: &Path, leaves: &[usize]) -> Option<(usize, f64)> {
-        if leaves.is_empty() || c.closed || self.plan().allowance > 0.0 || self.hosting == Some(false) {
+        if leaves.is_empty() || !self.may_host(c) {
             return None;
         }
         let near = bbox_of(&c.segments).inflated(self.host_reach());
         (leaves.iter())
             .filter(|&&l| self.boxes[l].intersects(&near))
-            .filter_map(|&l| {
-                let outer = loop_path(&self.plan().parts[l].outer.segments);
-                self.hosts(&outer, c, true).map(|d| (l, d))
-            })
+            .filter_map(|&l| (self.hosts(&self.plan().parts[l].outer.segments, c, true)).map(|d| (l, d)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
-    /// How far the open path `c` lies from the loop `l` when `l` can cut it on its way round
+    /// How far the open path `c` lies from the loop `l` (its segments) when `l` can cut it on its way round
     /// (see [`Linker::excursions`]): from `l`'s point nearest to an end of `c`, that end (with
     /// `both_ends`, both) within [`HOST_REACH_RADII`] tool radii with nothing in the way; none
     /// when `l` passes nowhere so near. A spot's pass may run on beyond: the tool comes back
     /// along it, where a clean-up path's way back along it is a second cut of the same.
-    fn hosts(&self, l: &Path, c: &Path, both_ends: bool) -> Option<f64> {
+    fn hosts(&self, l: &[Segment], c: &Path, both_ends: bool) -> Option<f64> {
         let (r, reach) = (self.plan().tool_radius, self.host_reach());
-        let ends = [c.segments[0].start(), c.segments[c.segments.len() - 1].end()];
+        let ends: [Point; 2] = c.ends().into();
         let mut best: Option<f64> = None;
         for end in ends {
-            let p = nearest_point(&l.segments, end);
+            let p = nearest_point(l, end);
             let d = p.distance(end);
             let reached = |e: Point| p.distance(e) <= reach && self.stays_inside(p, e, r);
             let ok = if both_ends {
@@ -957,7 +964,7 @@ impl<'a> Linker<'a> {
                         return (k, t, path, Some((*leaf, back)));
                     }
                 };
-                let (start, end) = (c.segments[0].start(), c.segments[c.segments.len() - 1].end());
+                let (start, end) = c.ends();
                 let (k, t, d_start) = nearest_on(segments, start);
                 let (k2, t2, d_end) = nearest_on(segments, end);
                 if d_end < d_start {
@@ -1527,7 +1534,7 @@ impl<'a> LeavesBeside<'a> {
                 continue;
             }
             if let Some(spot) = l.checked_sub(self.leaves.len()).map(|k| &self.spots[k]) {
-                match linker.hosts(&item.0, spot, false) {
+                match linker.hosts(&item.0.segments, spot, false) {
                     Some(_) => item.1.push(Excursion::Cleanup(spot.clone())),
                     None => self.left_spots.push(spot),
                 }

@@ -61,18 +61,22 @@ pub const MAX_EXACT_PATHS: usize = 6;
 /// ```
 pub fn path_order(paths: &[(Point, Point)], start: Point, end: Option<Point>) -> Vec<usize> {
     let n = paths.len();
-    // The travel through `order`: each path entered at its end nearer the tool.
+    // From `at` through path `i`, entered at its end nearer the tool: the way there and where
+    // the tool leaves it.
+    let through = |at: Point, i: usize| {
+        let (a, b) = paths[i];
+        if a.distance(at) <= b.distance(at) {
+            (a.distance(at), b)
+        } else {
+            (b.distance(at), a)
+        }
+    };
+    // The travel through `order`.
     let travel = |order: &[usize]| {
         let (mut at, mut length) = (start, 0.0);
         for &i in order {
-            let (a, b) = paths[i];
-            let (entry, exit) = if a.distance(at) <= b.distance(at) {
-                (a, b)
-            } else {
-                (b, a)
-            };
-            length += at.distance(entry);
-            at = exit;
+            let (way, exit) = through(at, i);
+            (length, at) = (length + way, exit);
         }
         length + end.map_or(0.0, |e| at.distance(e))
     };
@@ -80,13 +84,11 @@ pub fn path_order(paths: &[(Point, Point)], start: Point, end: Option<Point>) ->
     if n > MAX_EXACT_PATHS {
         let mut at = start;
         for k in 0..n {
-            let near = |i: usize| paths[i].0.distance(at).min(paths[i].1.distance(at));
             let j = (k..n)
-                .min_by(|&x, &y| near(order[x]).total_cmp(&near(order[y])))
+                .min_by(|&x, &y| through(at, order[x]).0.total_cmp(&through(at, order[y]).0))
                 .unwrap_or(k);
             order.swap(k, j);
-            let (a, b) = paths[order[k]];
-            at = if a.distance(at) <= b.distance(at) { b } else { a };
+            at = through(at, order[k]).1;
         }
         return order;
     }
