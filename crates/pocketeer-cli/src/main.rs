@@ -282,6 +282,9 @@ fn emit(text: &str) -> Result<(), Failure> {
     }
 }
 
+#[global_allocator]
+static ALLOCATOR: allocator::Allocator = allocator::Allocator;
+
 fn main() -> ExitCode {
     allocator::tune();
     let cli = Cli::parse();
