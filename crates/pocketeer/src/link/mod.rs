@@ -244,15 +244,26 @@ pub fn link_with(
     link_hosting(jobs, params, tol, progress, None)
 }
 
-/// [`link_with`], the clean-up paths cut on the way round loops where they can be
-/// (`Some(true)`), never (`Some(false)`), or whichever takes less time, part by part (`None`,
-/// see [`Linker::cut_part_timed`]).
+/// Where a part's clean-up paths are cut (see [`Linker::cut_part`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Hosting {
+    /// On the way round the part's loops, or round the loops of the leaves cut after it, and
+    /// among those leaves when beside one.
+    Everywhere,
+    /// On the way round the part's own loops, or among its paths: nothing waits for the leaves.
+    OwnLoops,
+    /// Each as a path of its own (among the leaves cut after the part when beside one).
+    Never,
+}
+
+/// [`link_with`], the clean-up paths cut where `hosting` says, or the way that takes less
+/// time, part by part (`None`, see [`Linker::cut_part_timed`]).
 fn link_hosting(
     jobs: &[(&PreparedPocket, &ClearPlan)],
     params: &LinkParams,
     tol: &Tolerance,
     progress: &dyn crate::progress::Progress,
-    hosting: Option<bool>,
+    hosting: Option<Hosting>,
 ) -> Result<Linked, LinkError> {
     params.check()?;
     let passes = pass_depths(params.depth, params.step_down);
@@ -281,6 +292,7 @@ fn link_hosting(
         uncut: UncutLeaves::default(),
         hosting,
         hosted: 0,
+        deferred: 0,
         helices: Vec::new(),
         stepped_out: None,
     };
@@ -354,13 +366,16 @@ struct Linker<'a> {
     /// The plain leaves of nested loops of the part being cut that wait for its paths (see
     /// [`Linker::is_plain_leaf`]): their stock is not cut, and no link at depth crosses them.
     uncut: UncutLeaves,
-    /// Whether clean-up paths are cut on the way round a loop where they can be (see
-    /// [`Linker::host_of`]): fixed by the caller, or none, and [`Linker::cut_part_timed`]
-    /// tries a part both ways (setting it to `false` for the second).
-    hosting: Option<bool>,
+    /// Where clean-up paths are cut (see [`Linker::cut_part`]): fixed by the caller, or none,
+    /// and [`Linker::cut_part_timed`] tries a part each way that differs (setting it for all
+    /// but the first).
+    hosting: Option<Hosting>,
     /// How many clean-up paths have been given a loop to be cut from (see
     /// [`Linker::host_of`]).
     hosted: usize,
+    /// How many of a part's clean-up paths have been left to be cut with the leaves after it
+    /// (see [`Linker::cut_part`]).
+    deferred: usize,
     /// The helices found for the entries into the plan's parts (see [`Linker::find_helix`]):
     /// [`Linker::cut_part_timed`] cuts a part twice, every pass enters the same parts, and a
     /// helix looked for about all of a large part's paths took 290 ms of the 300-hole plate's
@@ -400,6 +415,7 @@ struct Tried {
     last: (Vec<Segment>, bool),
     cut_early: std::collections::HashSet<(usize, usize)>,
     uncut: UncutLeaves,
+    stepped_out: Option<usize>,
 }
 
 impl<'a> Linker<'a> {
@@ -560,6 +576,11 @@ impl<'a> Linker<'a> {
             .filter(|&l| self.waits_for_parent(l))
             .chain(after.iter().copied())
             .collect();
+        let later = if self.hosting == Some(Hosting::OwnLoops) {
+            Vec::new()
+        } else {
+            later
+        };
         let mut deferred = Vec::new();
         for c in &part.cleanups {
             let on_part = self.host_of(c, &outer.0, &items);
@@ -577,6 +598,7 @@ impl<'a> Linker<'a> {
                 _ => loose.push((c.clone(), Vec::new())),
             }
         }
+        self.deferred += deferred.len();
         // A finishing loop has leads, nothing on its way round (no part has spots beside one).
         let leads = part.level == 0 && self.plan().allowance > 0.0;
         let spots: &[Path] = if leads { &[] } else { &part.spots };
@@ -643,13 +665,16 @@ impl<'a> Linker<'a> {
 
     /// Cuts the part `n` ([`Linker::cut_part`]) and the leaves that wait for it
     /// ([`Linker::cut_small_leaves`], with `after`), its clean-up paths cut on the way round
-    /// its loops where they can be (see [`Linker::host_of`]); when that cut any, again with
-    /// each cut as a path of its own, keeping the way that takes less time. Neither is
-    /// faster everywhere: a clean-up path beside a loop costs a step out and back (on the
-    /// 8-island rectangle at 70 % stepover the excursions saved 23 s of 403), but a row of
-    /// short ones is cut in one pass from each to the next (the 10 × 6 island grid at 85 %:
-    /// 589 s as paths of their own, 650 s as excursions). What the way chosen does to the
-    /// link to the next part is not counted.
+    /// its loops or its leaves' where they can be (see [`Linker::host_of`]); when that cut any
+    /// so, or left any to the leaves, again each way that differs ([`Hosting`]), keeping the
+    /// one that takes least time. None is faster everywhere: a clean-up path beside a loop
+    /// costs a step out and back (on the 8-island rectangle at 70 % stepover the excursions
+    /// saved 23 s of 403), but a row of short ones is cut in one pass from each to the next
+    /// (the 10 × 6 island grid at 85 %: 589 s as paths of their own, 650 s as excursions);
+    /// leaving paths to the leaves spared the 90 % rectangle a link through each triangle's
+    /// stock, but on FLH-001 at 60 % it took two from the part's loop that cut them on its
+    /// way round, and the part's loops were then cut in another order, with a 44 mm link.
+    /// What the way chosen does to the link to the next part is not counted.
     fn cut_part_timed(&mut self, n: usize, first: bool, reach: Reach, along: &[usize], after: Vec<usize>) {
         let plan = self.plan();
         let open = plan.allowance == 0.0 && plan.parts[n].cleanups.iter().any(|c| !c.closed);
@@ -661,27 +686,42 @@ impl<'a> Linker<'a> {
         if !open || self.hosting.is_some() {
             return cut(self, after);
         }
-        let (mark, before) = (self.mark(), self.hosted);
+        let (mark, hosted, deferred) = (self.mark(), self.hosted, self.deferred);
+        self.hosting = Some(Hosting::Everywhere);
         cut(self, after.clone());
-        if self.hosted == before {
-            // None was cut on the way: the other way is this one.
+        self.hosting = None;
+        // The other ways, where they differ from this one.
+        let others = [
+            (self.deferred != deferred).then_some(Hosting::OwnLoops),
+            (self.hosted != hosted).then_some(Hosting::Never),
+        ];
+        if others.iter().all(Option::is_none) {
             return;
         }
-        let hosted = self.seconds_since(&mark);
-        let tried = self.back_to(&mark);
-        // Told to nobody: the steps, one a path either way, were told as the first way was cut.
+        let mut best = (self.seconds_since(&mark), self.back_to(&mark));
+        // Told to nobody: the steps, one a path each way, were told as the first way was cut.
         let progress = std::mem::replace(&mut self.progress, &crate::progress::Silent);
-        self.hosting = Some(false);
-        cut(self, after);
+        for way in others.into_iter().flatten() {
+            self.hosting = Some(way);
+            cut(self, after.clone());
+            let seconds = self.seconds_since(&mark);
+            let tried = self.back_to(&mark);
+            if seconds < best.0 {
+                best = (seconds, tried);
+            }
+        }
         self.hosting = None;
         self.progress = progress;
-        if hosted <= self.seconds_since(&mark) {
-            self.back_to(&mark);
-            self.path.moves.extend(tried.moves);
-            self.warnings.extend(tried.warnings);
-            (self.down, self.last, self.cut_early, self.uncut) =
-                (tried.down, tried.last, tried.cut_early, tried.uncut);
-        }
+        let tried = best.1;
+        self.path.moves.extend(tried.moves);
+        self.warnings.extend(tried.warnings);
+        (self.down, self.last, self.cut_early, self.uncut, self.stepped_out) = (
+            tried.down,
+            tried.last,
+            tried.cut_early,
+            tried.uncut,
+            tried.stepped_out,
+        );
     }
 
     /// True when an end of the clean-up path `c` lies within [`HOST_REACH_RADII`] tool radii
@@ -734,9 +774,9 @@ impl<'a> Linker<'a> {
             last: std::mem::replace(&mut self.last, mark.last.clone()),
             cut_early: std::mem::replace(&mut self.cut_early, mark.cut_early.clone()),
             uncut: std::mem::take(&mut self.uncut),
+            stepped_out: self.stepped_out.take(),
         };
         self.down = mark.down;
-        self.stepped_out = None;
         tried
     }
 
@@ -768,7 +808,7 @@ impl<'a> Linker<'a> {
     /// the loops have no leads (no finishing allowance), and hosting is not switched off (see
     /// [`Linker::host_of`]).
     fn may_host(&self, c: &Path) -> bool {
-        !c.closed && self.plan().allowance == 0.0 && self.hosting != Some(false)
+        !c.closed && self.plan().allowance == 0.0 && self.hosting != Some(Hosting::Never)
     }
 
     /// Of the `leaves` (parts cut after the clean-up path `c`'s part, see
