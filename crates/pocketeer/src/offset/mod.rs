@@ -145,7 +145,7 @@ impl PreparedPocket {
             // Growing the region is eroding everything else.
             let reversed: Vec<Contour> = self.contours().iter().map(Contour::reversed).collect();
             Ok(
-                erode(&reversed, self.walls(), &|p| !self.contains(p), -d, tol, None)?
+                erode(&reversed, &|| self.walls(), &|p| !self.contains(p), -d, tol, None)?
                     .0
                     .iter()
                     .map(Contour::reversed)
@@ -178,14 +178,16 @@ impl PreparedPocket {
         tol: &Tolerance,
         smaller: Option<&Sources>,
     ) -> Result<(Vec<Contour>, Sources), OffsetError> {
-        erode(
-            self.contours(),
-            self.walls(),
-            &|p| self.contains(p),
-            d.max(0.0),
-            tol,
-            smaller,
-        )
+        self.with_indexes_built_beside(|| {
+            erode(
+                self.contours(),
+                &|| self.walls(),
+                &|p| self.contains(p),
+                d.max(0.0),
+                tol,
+                smaller,
+            )
+        })
     }
 
     /// The region eroded by each of `distances` (increasing, positive), computed on every
@@ -290,11 +292,12 @@ pub fn offset_contour(contour: &Contour, d: f64, tol: &Tolerance) -> Result<Vec<
     PreparedPocket::from_loops(vec![contour.clone().oriented(true)]).offset(d, tol)
 }
 
-/// The boundary of the region on the left of `contours` (where `inside` holds) eroded by `d`,
-/// and the sources of its pieces; only the sources in `smaller` are offset when given.
-fn erode(
+/// The boundary of the region on the left of `contours` (where `inside` holds, walled by the
+/// index `walls` gives, asked for only once the raw offset is split) eroded by `d`, and the
+/// sources of its pieces; only the sources in `smaller` are offset when given.
+fn erode<'w>(
     contours: &[Contour],
-    walls: &SegmentIndex,
+    walls: &(dyn Fn() -> &'w SegmentIndex + Sync),
     inside: &dyn Fn(Point) -> bool,
     d: f64,
     tol: &Tolerance,
@@ -341,7 +344,7 @@ fn erode(
                 ),
                 near: pieces[o.at].segment.start(),
             };
-            let clipped = clip::clip_invalid(&raw, walls, d, prune::slack(d, tol), &mut nodes)
+            let clipped = clip::clip_invalid(&raw, walls(), d, prune::slack(d, tol), &mut nodes)
                 .ok_or_else(|| too_complex(&raw, first))?;
             split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
@@ -367,15 +370,16 @@ fn erode(
         (Source::Joint(k), crate::geom::Segment::Line(_)) => Some(k as usize),
         _ => None,
     };
-    let mut kept =
-        prune(&pieces, &graph, walls, inside, &join_at, d, tol).map_err(|near| OffsetError::TooComplex {
+    let mut kept = prune(&pieces, &graph, walls(), inside, &join_at, d, tol).map_err(|near| {
+        OffsetError::TooComplex {
             distance: d,
             what: format!(
                 "judging its pieces would measure more than {} distances to the walls",
                 prune::MAX_MEASURES
             ),
             near,
-        })?;
+        }
+    })?;
     cancel_opposites(&pieces, &graph, &mut kept, tol);
     remove_dangling(&pieces, &graph, &mut kept);
     let mut used = vec![false; 2 * elements];
