@@ -732,6 +732,16 @@ fn the_tool_retracts_from_where_it_cut_not_after_a_step_through_cleared_stock() 
     assert!(total < 10.0, "retracts after {idle:?} mm through cleared stock");
 }
 
+/// The time of the program linked with its clean-up paths cut where `hosting` says (`None`:
+/// the fastest way, part by part), checked for gouges.
+fn hosted_seconds(plan: &ClearPlan, prepared: &PreparedPocket, hosting: Option<Hosting>) -> f64 {
+    let p = params(Entry::Helix);
+    let job = [(prepared, plan)];
+    let l = link_hosting(&job, &p, &Tolerance::default(), &crate::progress::Silent, hosting).unwrap();
+    assert_no_gouge(&l.toolpath, prepared);
+    p.time.toolpath(&l.toolpath).total()
+}
+
 #[test]
 fn clean_up_paths_are_cut_the_faster_way_part_by_part() {
     // Excursions from the loops save time on the two-island rectangle at 70 % stepover; on an
@@ -752,13 +762,7 @@ fn clean_up_paths_are_cut_the_faster_way_part_by_part() {
     let mut slower = [0, 0];
     for (pocket, stepover) in [(two_islands(120.0, 60.0, [35.0, 85.0]), 4.2), (grid, 4.8)] {
         let (plan, prepared) = planned(&pocket, stepover);
-        let seconds = |hosting| {
-            let p = params(Entry::Helix);
-            let job = [(&prepared, &plan)];
-            let l = link_hosting(&job, &p, &Tolerance::default(), &crate::progress::Silent, hosting).unwrap();
-            assert_no_gouge(&l.toolpath, &prepared);
-            p.time.toolpath(&l.toolpath).total()
-        };
+        let seconds = |hosting| hosted_seconds(&plan, &prepared, hosting);
         let (timed, hosted, own) = (
             seconds(None),
             seconds(Some(Hosting::Everywhere)),
@@ -1146,13 +1150,7 @@ fn clean_up_paths_stay_on_the_parts_loops_when_that_is_faster_than_going_with_th
     // two paths from the loop that cut them, and the program took 3 s longer).
     let pocket = two_islands(120.0, 60.0, [35.0, 85.0]);
     let (plan, prepared) = planned(&pocket, 5.4);
-    let seconds = |hosting| {
-        let p = params(Entry::Helix);
-        let job = [(&prepared, &plan)];
-        let l = link_hosting(&job, &p, &Tolerance::default(), &crate::progress::Silent, hosting).unwrap();
-        assert_no_gouge(&l.toolpath, &prepared);
-        p.time.toolpath(&l.toolpath).total()
-    };
+    let seconds = |hosting| hosted_seconds(&plan, &prepared, hosting);
     let (timed, everywhere, own, never) = (
         seconds(None),
         seconds(Some(Hosting::Everywhere)),
