@@ -14,9 +14,10 @@
 //! 18 thousand times, a quarter of its time in the kernel. [`Allocator`] therefore maps each
 //! block of [`LARGE`] or more itself, marked for transparent huge pages (2 MiB: one fault and
 //! one clearing each) before anything touches it, and grows it with `mremap`, which moves the
-//! pages instead of copying them. The rest goes to glibc, with the thresholds above. Measured
-//! on that offset: 18.5 thousand faults fall to 4.5 thousand and the run to 0.79 of its time;
-//! on the 100 000-line pocket, 106 thousand to 14 thousand (BENCHMARKS.md, issue 21).
+//! pages instead of copying them, where the kernel has transparent huge pages on. The rest
+//! goes to glibc, with the thresholds above. Measured on that offset: 18.5 thousand faults
+//! fall to 4.5 thousand and the run to 0.79 of its time; on the 100 000-line pocket, 106
+//! thousand to 14 thousand (BENCHMARKS.md, issue 21).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
@@ -35,10 +36,67 @@ const LARGE: usize = 4 << 20;
 #[cfg(target_os = "linux")]
 const HUGE_PAGE: usize = 2 << 20;
 
-/// Whether a block of `layout` is mapped on its own (page alignment at most: a mapping's).
+/// Whether a block of `layout` is mapped on its own: large, page alignment at most (a
+/// mapping's), and the kernel gives huge pages to memory that asks for them.
 #[cfg(target_os = "linux")]
 fn large(layout: &Layout) -> bool {
-    layout.size() >= LARGE && layout.align() <= 4096
+    layout.size() >= LARGE && layout.align() <= 4096 && huge_pages()
+}
+
+/// Whether transparent huge pages are on for memory advised to use them (`always` or
+/// `madvise` in the kernel's setting). Where they are off, a block mapped on its own would
+/// only lose glibc's reuse of freed memory: every large list would fault in fresh pages.
+/// Read once, at the first large block, so that small jobs do not pay for it.
+#[cfg(target_os = "linux")]
+fn huge_pages() -> bool {
+    use std::sync::atomic::{AtomicU8, Ordering};
+    // 0: not read yet, 1: on, 2: off.
+    static STATE: AtomicU8 = AtomicU8::new(0);
+    match STATE.load(Ordering::Relaxed) {
+        1 => true,
+        2 => false,
+        _ => {
+            let on = huge_pages_setting();
+            STATE.store(if on { 1 } else { 2 }, Ordering::Relaxed);
+            on
+        }
+    }
+}
+
+/// Reads the kernel's transparent huge page setting, without allocating (this runs inside the
+/// allocator): off when it cannot be read.
+#[cfg(target_os = "linux")]
+fn huge_pages_setting() -> bool {
+    let mut text = [0u8; 64];
+    // SAFETY: a constant NUL-terminated path; the descriptor is checked before use.
+    let fd = unsafe {
+        libc::open(
+            c"/sys/kernel/mm/transparent_hugepage/enabled".as_ptr(),
+            libc::O_RDONLY | libc::O_CLOEXEC,
+        )
+    };
+    if fd < 0 {
+        return false;
+    }
+    // SAFETY: reads at most `text.len()` bytes into `text`, which is that long; `fd` is open
+    // and closed once, here.
+    let read = unsafe {
+        let n = libc::read(fd, text.as_mut_ptr().cast(), text.len());
+        libc::close(fd);
+        n
+    };
+    usize::try_from(read)
+        .ok()
+        .and_then(|n| text.get(..n))
+        .is_some_and(huge_pages_on)
+}
+
+/// Whether the kernel's transparent huge page setting (`text`, the bracketed word chosen:
+/// "always [madvise] never") gives huge pages to advised memory.
+#[cfg(target_os = "linux")]
+fn huge_pages_on(text: &[u8]) -> bool {
+    let chosen = |word: &[u8]| text.windows(word.len()).any(|w| w == word);
+    chosen(b"[always]") || chosen(b"[madvise]")
 }
 
 /// The length of the mapping that holds a block of `size` bytes.
@@ -220,6 +278,16 @@ mod tests {
         }
         // SAFETY: `p` is live with layout `old`.
         unsafe { a.dealloc(p, old) };
+    }
+
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn huge_pages_are_used_where_the_kernel_gives_them_to_advised_memory() {
+        use super::huge_pages_on;
+        assert!(huge_pages_on(b"always [madvise] never\n"));
+        assert!(huge_pages_on(b"[always] madvise never\n"));
+        assert!(!huge_pages_on(b"always madvise [never]\n"));
+        assert!(!huge_pages_on(b""));
     }
 
     #[test]
