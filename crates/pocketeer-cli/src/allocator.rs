@@ -56,9 +56,13 @@ fn huge_pages() -> bool {
         1 => true,
         2 => false,
         _ => {
-            let on = huge_pages_setting();
-            STATE.store(if on { 1 } else { 2 }, Ordering::Relaxed);
-            on
+            // The first answer stored is everyone's, for good: a block must be freed the way
+            // it was made, even should the setting change while two threads read it.
+            let read = if huge_pages_setting() { 1 } else { 2 };
+            match STATE.compare_exchange(0, read, Ordering::Relaxed, Ordering::Relaxed) {
+                Ok(_) => read == 1,
+                Err(stored) => stored == 1,
+            }
         }
     }
 }
@@ -131,9 +135,10 @@ fn map(len: usize) -> *mut u8 {
 }
 
 // SAFETY: a block is served by `System` or mapped here, and which one follows from its layout
-// alone (`large`), which the caller passes back unchanged to `dealloc` and `realloc`; a mapped
-// block is `mapped(size)` bytes from a page boundary, so it is aligned for any layout `large`
-// accepts, zeroed, and released or moved only as a whole mapping.
+// (`large`), which the caller passes back unchanged to `dealloc` and `realloc`, and from the
+// kernel's setting, read once and fixed for the process (`huge_pages`); a mapped block is
+// `mapped(size)` bytes from a page boundary, so it is aligned for any layout `large` accepts,
+// zeroed, and released or moved only as a whole mapping.
 unsafe impl GlobalAlloc for Allocator {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         #[cfg(target_os = "linux")]
