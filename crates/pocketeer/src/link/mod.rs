@@ -458,13 +458,12 @@ impl<'a> Linker<'a> {
             let to_leaf: Vec<f64> = (leaves.iter())
                 .map(|&c| walk::distance_to_start(&loop_path(&plan.parts[c].outer.segments), here))
                 .collect();
-            let k = nearest(&to_leaf, |&d| d);
-            let j = nearest(&loose, |(_, p)| walk::distance_to_start(p, here));
+            let to_loose: Vec<f64> = (loose.iter())
+                .map(|(_, p)| walk::distance_to_start(p, here))
+                .collect();
+            let (k, j) = (nearest(&to_leaf, |&d| d), nearest(&to_loose, |&d| d));
             let nearest_leaf = to_leaf.get(k).copied().unwrap_or(f64::INFINITY);
-            if loose
-                .get(j)
-                .is_some_and(|(_, p)| walk::distance_to_start(p, here) < nearest_leaf)
-            {
+            if to_loose.get(j).is_some_and(|&d| d < nearest_leaf) {
                 let (_, path) = loose.swap_remove(j);
                 self.cut_path(parent, &path, false, reach);
                 continue;
@@ -572,14 +571,14 @@ impl<'a> Linker<'a> {
         // of one passes nearer than the part's own loops is cut on the way round it. Beside a
         // leaf, the straight way from one such path to the next ran through the leaf's stock
         // the leaf's loop then went round again, cutting nothing.
-        let later: Vec<usize> = (along.iter().copied())
-            .filter(|&l| self.waits_for_parent(l))
-            .chain(after.iter().copied())
-            .collect();
-        let later = if self.hosting == Some(Hosting::OwnLoops) {
+        // None when the part keeps its clean-up paths to its own loops.
+        let later: Vec<usize> = if self.hosting == Some(Hosting::OwnLoops) {
             Vec::new()
         } else {
-            later
+            (along.iter().copied())
+                .filter(|&l| self.waits_for_parent(l))
+                .chain(after.iter().copied())
+                .collect()
         };
         let mut deferred = Vec::new();
         for c in &part.cleanups {

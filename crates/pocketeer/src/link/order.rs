@@ -85,8 +85,9 @@ pub fn path_order(paths: &[(Point, Point)], start: Point, end: Option<Point>) ->
         let mut at = start;
         for k in 0..n {
             let j = (k..n)
-                .min_by(|&x, &y| through(at, order[x]).0.total_cmp(&through(at, order[y]).0))
-                .unwrap_or(k);
+                .map(|x| (x, through(at, order[x]).0))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or(k, |(x, _)| x);
             order.swap(k, j);
             at = through(at, order[k]).1;
         }
