@@ -2,6 +2,7 @@
 
 mod allocator;
 mod check;
+mod deferred;
 mod display;
 mod inspect;
 mod job;
@@ -17,6 +18,7 @@ mod sanity;
 mod view;
 
 use clap::{Args, Parser, Subcommand};
+use deferred::Deferred;
 use pocketeer::import::{FillRule, Units};
 use pocketeer::ImportOptions;
 use std::path::PathBuf;
@@ -37,24 +39,24 @@ struct Cli {
 enum Command {
     /// Show what a drawing holds: units, extents, layers, entities, contours, pockets and
     /// islands.
-    Inspect(InspectArgs),
+    Inspect(Deferred<InspectArgs>),
     /// Offset every pocket of a drawing by a distance and write the loops as a DXF.
     #[command(allow_negative_numbers = true)]
-    Offset(OffsetArgs),
+    Offset(Deferred<OffsetArgs>),
     /// Clear every pocket of a drawing and write the G-code program.
     #[command(allow_negative_numbers = true)]
-    Pocket(pocket::PocketArgs),
+    Pocket(Deferred<pocket::PocketArgs>),
     /// Replay a G-code program against its drawing: gouge, leftover, milling side, rapids,
     /// plunges, time.
     #[command(allow_negative_numbers = true)]
-    Check(check::CheckArgs),
+    Check(Deferred<check::CheckArgs>),
     /// Run a job file: operations on layers, each with a tool of the job's library, in one
     /// program with the tool changes between them.
-    Job(job::JobArgs),
+    Job(Deferred<job::JobArgs>),
     /// Write an interactive preview of any G-code program over its drawing: one
     /// self-contained HTML page (zoom, pan, a play slider, moves by kind, the summary).
     #[command(allow_negative_numbers = true)]
-    View(view::ViewArgs),
+    View(Deferred<view::ViewArgs>),
 }
 
 /// How to read a drawing (shared by every command that reads one).
@@ -290,12 +292,12 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     progress::QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
     let result = match &cli.command {
-        Command::Inspect(args) => inspect(args),
-        Command::Offset(args) => offset(args),
-        Command::Pocket(args) => pocket::run(args),
-        Command::View(args) => view::run(args),
-        Command::Job(args) => job::run(args),
-        Command::Check(args) => match check::run(args) {
+        Command::Inspect(Deferred(args)) => inspect(args),
+        Command::Offset(Deferred(args)) => offset(args),
+        Command::Pocket(Deferred(args)) => pocket::run(args),
+        Command::View(Deferred(args)) => view::run(args),
+        Command::Job(Deferred(args)) => job::run(args),
+        Command::Check(Deferred(args)) => match check::run(args) {
             Ok(check::Verdict::Passed) => Ok(()),
             // Defects found: the report says which; exit 1 (2 is for errors).
             Ok(check::Verdict::Failed) => return ExitCode::from(1),
@@ -308,5 +310,61 @@ fn main() -> ExitCode {
             eprintln!("pocketeer: error: {msg}");
             ExitCode::from(2)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::{CommandFactory, Parser};
+
+    #[test]
+    fn the_command_line_is_consistent_with_every_subcommand_built() {
+        // Builds the deferred subcommands too, and checks clap's rules on all of them.
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn each_subcommand_keeps_its_own_summary_with_its_flags_defined_late() {
+        // Each with a flag of its own, which only its deferred definition adds.
+        for (name, summary, flag) in [
+            ("inspect", "Show what a drawing holds", "--layers"),
+            ("offset", "Offset every pocket of a drawing", "--distance"),
+            ("pocket", "Clear every pocket of a drawing", "--stepover"),
+            ("check", "Replay a G-code program against its drawing", "--layers"),
+            ("job", "Run a job file", "--print-template"),
+            ("view", "Write an interactive preview", "--layers"),
+        ] {
+            for help in ["-h", "--help"] {
+                let Err(e) = Cli::try_parse_from(["pocketeer", name, help]) else {
+                    panic!("{name} {help} parsed");
+                };
+                let text = e.render().to_string();
+                assert!(text.starts_with(summary), "{name} {help}: {text}");
+                assert!(text.contains(flag), "{name} {help} lacks {flag}: {text}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_subcommands_flags_are_parsed_when_defined_late() {
+        let cli = Cli::try_parse_from([
+            "pocketeer",
+            "--quiet",
+            "offset",
+            "part.dxf",
+            "--distance",
+            "-2",
+            "-o",
+            "out.dxf",
+        ])
+        .unwrap();
+        assert!(cli.quiet);
+        let super::Command::Offset(super::Deferred(args)) = cli.command else {
+            panic!("not offset");
+        };
+        assert_eq!(args.drawing.file, std::path::Path::new("part.dxf"));
+        assert_eq!(args.distance, -2.0);
+        assert!(Cli::try_parse_from(["pocketeer", "offset", "part.dxf", "--bogus"]).is_err());
     }
 }
