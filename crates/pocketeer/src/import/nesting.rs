@@ -228,20 +228,46 @@ impl Meetings {
             may_meet[a] = true;
             may_meet[b] = true;
         }
-        // Nor do the segments of a contour that lie outside every other contour's box: a
-        // profile of 100 000 lines round six islands puts only the islands in the index (its
-        // own neighbours' pairs were most of the work, and are never wanted).
+        // Nor does a segment of a contour `c` unless it touches the box of another contour `o`
+        // that has a segment touching `c`'s box: a meeting point lies in a segment's box on
+        // either side, so each side's segment touches the other contour's box. A profile of
+        // 100 000 lines round six islands puts only the islands in the index (its own
+        // neighbours' pairs were most of the work, and are never wanted), and a plate whose
+        // holes lie clear of its edges puts nothing.
         let near_others = BoxIndex::new(&contour_boxes);
-        let (refs, boxes): (Vec<SegRef>, Vec<Aabb>) = contours
-            .iter()
-            .enumerate()
-            .filter(|&(c, _)| may_meet[c])
-            .flat_map(|(c, cc)| {
-                (cc.contour.segments.iter().enumerate())
-                    .map(move |(index, s)| (SegRef { contour: c, index }, s.bbox().inflated(tol.eps)))
-            })
-            .filter(|(r, b)| near_others.intersecting(b).any(|o| o != r.contour))
-            .unzip();
+        // Each segment that touches another contour's box, with that contour.
+        let mut touching: Vec<(SegRef, Aabb, usize)> = Vec::new();
+        for (c, cc) in contours.iter().enumerate().filter(|&(c, _)| may_meet[c]) {
+            // A hole's segments are tested against the few boxes round it, not the index.
+            let others: Vec<usize> = near_others
+                .intersecting(&contour_boxes[c])
+                .filter(|&o| o != c)
+                .collect();
+            let few = others.len() <= 8;
+            for (index, s) in cc.contour.segments.iter().enumerate() {
+                let b = s.bbox().inflated(tol.eps);
+                let r = SegRef { contour: c, index };
+                if few {
+                    let touched = others.iter().filter(|&&o| contour_boxes[o].intersects(&b));
+                    touching.extend(touched.map(|&o| (r, b, o)));
+                } else {
+                    let touched = near_others.intersecting(&b).filter(|&o| o != c);
+                    touching.extend(touched.map(|o| (r, b, o)));
+                }
+            }
+        }
+        let reaches: HashSet<(usize, usize)> = touching.iter().map(|(r, _, o)| (r.contour, *o)).collect();
+        let mut refs: Vec<SegRef> = Vec::new();
+        let mut boxes: Vec<Aabb> = Vec::new();
+        for &(r, b, o) in &touching {
+            let same = refs
+                .last()
+                .is_some_and(|l| l.contour == r.contour && l.index == r.index);
+            if !same && reaches.contains(&(o, r.contour)) {
+                refs.push(r);
+                boxes.push(b);
+            }
+        }
         let seg = |r: &SegRef| &contours[r.contour].contour.segments[r.index];
         let index = BoxIndex::new(&boxes);
         let mut cuts: HashMap<(usize, usize), Vec<(f64, Point)>> = HashMap::new();
