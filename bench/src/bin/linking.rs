@@ -96,6 +96,39 @@ fn two_circles_cw(cx: f64, cy: f64, r: f64, gap: f64) -> Ring {
     vec![(cx, cy + h, b), (cx, cy - h, b)]
 }
 
+/// A `w` x `h` rectangle with `n` round islands of radius 5 to 13 mm placed at random from
+/// `seed`, at least 3 mm from one another and from the walls (so some necks are narrower
+/// than a 6 mm tool).
+fn scattered_islands(w: f64, h: f64, n: usize, seed: u64) -> Vec<Ring> {
+    // A linear congruential generator (Knuth's MMIX constants), the high bits as a fraction.
+    let mut state = seed;
+    let mut unit = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let gap = 3.0;
+    let mut islands: Vec<(f64, f64, f64)> = Vec::new();
+    for _ in 0..10_000 {
+        if islands.len() == n {
+            break;
+        }
+        let r = 5.0 + 8.0 * unit();
+        let x = r + gap + (w - 2.0 * (r + gap)) * unit();
+        let y = r + gap + (h - 2.0 * (r + gap)) * unit();
+        if islands
+            .iter()
+            .all(|&(a, b, q)| ((x - a).powi(2) + (y - b).powi(2)).sqrt() >= r + q + gap)
+        {
+            islands.push((x, y, r));
+        }
+    }
+    let mut rings = vec![rect_ccw(0.0, 0.0, w, h)];
+    rings.extend(islands.into_iter().map(|(x, y, r)| circle_cw(x, y, r)));
+    rings
+}
+
 fn drawings() -> Vec<Drawing> {
     let mut out = Vec::new();
     let rect_islands = cases::rounded_with_islands().rings;
@@ -106,6 +139,25 @@ fn drawings() -> Vec<Drawing> {
             tool: 6.0,
             stepover: s,
         });
+    }
+    // Rectangles with round islands scattered at random (a fixed seed each), at the stepovers
+    // of the shop: the layout above is the one the linking was tuned on, these are not.
+    for (k, (w, h, n)) in [(180.0, 110.0, 7), (160.0, 100.0, 5), (220.0, 130.0, 9)]
+        .into_iter()
+        .enumerate()
+    {
+        let rings = scattered_islands(w, h, n, 0x5eed + k as u64);
+        for s in [0.4, 0.7, 0.9] {
+            out.push(Drawing {
+                name: format!(
+                    "rectangle {w:.0}x{h:.0}, {n} scattered islands, {:.0} %",
+                    100.0 * s
+                ),
+                pockets: vec![pocket_of(rings.clone())],
+                tool: 6.0,
+                stepover: s,
+            });
+        }
     }
     out.push(Drawing {
         name: "7-point star".into(),
