@@ -207,6 +207,10 @@ fn simplified(
     Ok((simple, origin))
 }
 
+/// Most contours round one whose segments are each tested against those contours' boxes
+/// one by one (a hole in a plate has one); beyond, each segment asks the index of boxes.
+const FEW_NEIGHBOURS: usize = 8;
+
 /// Where contours meet one another: the cuts on each segment, the groups of contours that
 /// meet (directly or through others), and one point of every meeting.
 struct Meetings {
@@ -243,7 +247,7 @@ impl Meetings {
                 .intersecting(&contour_boxes[c])
                 .filter(|&o| o != c)
                 .collect();
-            let few = others.len() <= 8;
+            let few = others.len() <= FEW_NEIGHBOURS;
             for (index, s) in cc.contour.segments.iter().enumerate() {
                 let b = s.bbox().inflated(tol.eps);
                 let r = SegRef { contour: c, index };
@@ -650,5 +654,68 @@ mod tests {
         assert!(warnings.is_empty(), "{warnings:?}");
         assert_eq!(pockets.len(), 1);
         assert_eq!(pockets[0].islands.len(), 1);
+    }
+
+    fn chained(contour: Contour) -> ChainedContour {
+        ChainedContour {
+            contour,
+            layer: 0,
+            elements: Vec::new(),
+        }
+    }
+
+    /// A square of side `2h` round `c`, clockwise.
+    fn square_hole(c: Point, h: f64) -> ChainedContour {
+        chained(Contour::polygon(&[
+            Point::new(c.x - h, c.y - h),
+            Point::new(c.x - h, c.y + h),
+            Point::new(c.x + h, c.y + h),
+            Point::new(c.x + h, c.y - h),
+        ]))
+    }
+
+    #[test]
+    fn meetings_are_found_among_many_contours_where_they_touch_and_nowhere_else() {
+        // A triangle with a grid of square holes clear of everything, one hole across its
+        // long side, one whose box reaches over that side while the hole stays clear of it,
+        // and one lying on the short side: the segments of most holes go into no index, and
+        // every meeting is still found.
+        let mut contours = vec![chained(Contour::polygon(&[
+            Point::new(0.0, 0.0),
+            Point::new(100.0, 0.0),
+            Point::new(0.0, 100.0),
+        ]))];
+        for i in 0..6 {
+            for j in 0..(6 - i) {
+                contours.push(square_hole(
+                    Point::new(8.0 + 12.0 * i as f64, 8.0 + 12.0 * j as f64),
+                    2.0,
+                ));
+            }
+        }
+        let across = contours.len();
+        contours.push(square_hole(Point::new(50.0, 50.0), 2.0));
+        // A diamond: its box's corner (23, 78) is beyond the side x + y = 100, it is not.
+        let c = Point::new(20.0, 75.0);
+        contours.push(chained(Contour::polygon(&[
+            Point::new(c.x + 3.0, c.y),
+            Point::new(c.x, c.y - 3.0),
+            Point::new(c.x - 3.0, c.y),
+            Point::new(c.x, c.y + 3.0),
+        ])));
+        let on_edge = contours.len();
+        contours.push(square_hole(Point::new(60.0, 2.0), 2.0));
+        let boxes: Vec<Aabb> = contours.iter().map(|c| c.contour.bbox()).collect();
+        let meetings = Meetings::find(&contours, &boxes, &Tolerance::default());
+        let mut pairs: Vec<(usize, usize)> = (meetings.crossings.iter())
+            .map(|&(a, b, _)| (a.min(b), a.max(b)))
+            .collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        assert_eq!(pairs, vec![(0, across), (0, on_edge)]);
+        for (c, &group) in meetings.cluster.iter().enumerate() {
+            let with_triangle = c == 0 || c == across || c == on_edge;
+            assert_eq!(group == meetings.cluster[0], with_triangle, "contour {c}");
+        }
     }
 }
