@@ -908,14 +908,18 @@ mod tests {
         assert!(left.iter().all(|p| p.distance(c) < 0.95), "{c:?}");
     }
 
+    /// The needed piece of the half level above the break round x = 20 of `gap`.
+    fn piece_under_break(gap: &Gap) -> Path {
+        (gap.needed(&square(1.9, 38.1)).into_iter())
+            .find(|p| (p.segments[0].start().x - 20.0).abs() < 2.0)
+            .expect("a piece under the break")
+    }
+
     #[test]
     fn a_spot_across_the_band_clears_what_the_centre_does_not() {
         let pocket = square_pocket();
         let gap = broken_gap(&pocket, &[(18.8, 21.2)]);
-        let pieces = gap.needed(&square(1.9, 38.1));
-        let piece = (pieces.iter())
-            .find(|p| (p.segments[0].start().x - 20.0).abs() < 2.0)
-            .expect("a piece under the break");
+        let piece = &piece_under_break(&gap);
         let (centre, _) = enclosing_circle(&outline_points(&piece.segments)).expect("a circle");
         assert!(gap.spot_at(piece, centre).is_none(), "the centre is not enough");
         let spot = gap.spot_for(piece).expect("a spot");
@@ -938,15 +942,12 @@ mod tests {
     #[test]
     fn a_spot_is_pulled_towards_the_loop_as_far_as_it_still_clears_its_piece() {
         // The patch of `a_spot_across_the_band_clears_what_the_centre_does_not`: its spot is
-        // where the excursion out from the loop of level k (y = 1) ends. Pulled a step of
-        // the list further it would leave material; so the step it stopped at is the last
-        // that clears, and the excursion is as short as the steps allow.
+        // where the excursion out from the loop of level k (y = 1) ends, pulled towards that
+        // loop by halving the way: it stops near the lowest point that still clears the
+        // patch, so the excursion is nearly as short as it can be.
         let pocket = square_pocket();
         let gap = broken_gap(&pocket, &[(18.8, 21.2)]);
-        let pieces = gap.needed(&square(1.9, 38.1));
-        let piece = (pieces.iter())
-            .find(|p| (p.segments[0].start().x - 20.0).abs() < 2.0)
-            .expect("a piece under the break");
+        let piece = &piece_under_break(&gap);
         let spot = gap.spot_for(piece).expect("a spot");
         let c = spot.segments[0].end();
         assert!(gap.covered_with(piece, &[c]));
