@@ -18,7 +18,7 @@
 
 use pocketeer::clear::ClearParams;
 use pocketeer::export::dxf::{write_dxf, LayeredContour};
-use pocketeer::geom::{Pocket, Segment, SegmentIndex, Tolerance, Vector};
+use pocketeer::geom::{Pocket, Segment, SegmentIndex, Tolerance};
 use pocketeer::import::Units;
 use pocketeer::job::pocket_job;
 use pocketeer::link::{Direction, Entry, LinkParams};
@@ -451,16 +451,9 @@ fn off_the_plan(path: &Toolpath, plans: &[pocketeer::clear::ClearPlan], z: f64) 
         if at_depth && !matches!(m, Move::Rapid { .. }) {
             let length = m.length(at);
             let n = ((length / 0.5).ceil() as usize).max(2);
-            let point = |t: f64| match *m {
-                Move::Arc { center, sweep, .. } => {
-                    let from = at.xy() - center;
-                    let (sin, cos) = (sweep * t).sin_cos();
-                    center + Vector::new(from.x * cos - from.y * sin, from.x * sin + from.y * cos)
-                }
-                _ => at.xy() + (to.xy() - at.xy()) * t,
-            };
+            let seen = m.planar(at);
             let away = (0..=n)
-                .filter(|&k| !index.any_within(point(k as f64 / n as f64), 1e-3))
+                .filter(|&k| !index.any_within(seen.point_at(k as f64 / n as f64), 1e-3))
                 .count();
             if 2 * away > n + 1 {
                 off += length;

@@ -1,7 +1,7 @@
 //! Tool paths: the moves of the tool centre (tip) in three dimensions, lines and arcs exact,
 //! the only thing the G-code posts translate.
 
-use crate::geom::{normalize_angle, Point};
+use crate::geom::{normalize_angle, Arc, Line, Point, Segment};
 use std::f64::consts::TAU;
 
 /// A point in machine space, mm; Z = 0 is the top of the stock, cutting happens below.
@@ -107,6 +107,32 @@ impl Move {
     pub fn to(&self) -> Point3 {
         match *self {
             Move::Rapid { to } | Move::Line { to, .. } | Move::Arc { to, .. } => to,
+        }
+    }
+
+    /// The move from `from` seen from above: a line, or the arc it turns round its centre
+    /// (the Z it climbs or descends left out).
+    ///
+    /// ```
+    /// use pocketeer::geom::Point;
+    /// use pocketeer::toolpath::{Feed, Move, Point3};
+    /// let half_turn = Move::Arc {
+    ///     to: Point3::new(-1.0, 0.0, -1.0),
+    ///     center: Point::new(0.0, 0.0),
+    ///     sweep: std::f64::consts::PI,
+    ///     feed: Feed::Cut,
+    /// };
+    /// let s = half_turn.planar(Point3::new(1.0, 0.0, 0.0));
+    /// assert!((s.length() - std::f64::consts::PI).abs() < 1e-12);
+    /// assert!(s.point_at(0.5).distance(Point::new(0.0, 1.0)) < 1e-12);
+    /// ```
+    pub fn planar(&self, from: Point3) -> Segment {
+        match *self {
+            Move::Arc { center, sweep, .. } => {
+                let v = from.xy() - center;
+                Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
+            }
+            _ => Segment::Line(Line::new(from.xy(), self.to().xy())),
         }
     }
 

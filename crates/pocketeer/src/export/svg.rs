@@ -287,20 +287,12 @@ fn escape(s: &str) -> String {
 
 /// The moves of `path` seen from above: feed moves and rapids, each as runs of segments.
 pub fn toolpath_segments(path: &crate::toolpath::Toolpath) -> (Vec<Vec<Segment>>, Vec<Vec<Segment>>) {
-    use crate::geom::{Arc, Line};
     use crate::toolpath::Move;
     let (mut feeds, mut rapids): (Vec<Vec<Segment>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
     let mut at = path.start;
     let mut last_rapid: Option<bool> = None;
     for m in &path.moves {
-        let (a, b) = (at.xy(), m.to().xy());
-        let seg = match *m {
-            Move::Arc { center, sweep, .. } => {
-                let v = a - center;
-                Segment::Arc(Arc::new(center, v.length(), v.angle(), sweep))
-            }
-            _ => Segment::Line(Line::new(a, b)),
-        };
+        let seg = m.planar(at);
         at = m.to();
         if seg.length() <= 0.0 {
             continue;

@@ -227,10 +227,11 @@ impl Meetings {
         // Only contours whose boxes overlap another's can meet it: the segments of the others
         // (most contours, in traced art and on island plates) stay out of the segment index.
         let contour_boxes: Vec<Aabb> = boxes.iter().map(|b| b.inflated(tol.eps)).collect();
-        let mut may_meet = vec![false; contours.len()];
+        // The contours whose boxes overlap each one's.
+        let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); contours.len()];
         for (a, b) in overlapping_pairs(&contour_boxes) {
-            may_meet[a] = true;
-            may_meet[b] = true;
+            neighbours[a].push(b);
+            neighbours[b].push(a);
         }
         // Nor does a segment of a contour `c` unless it touches the box of another contour `o`
         // that has a segment touching `c`'s box: a meeting point lies in a segment's box on
@@ -238,15 +239,16 @@ impl Meetings {
         // 100 000 lines round six islands puts only the islands in the index (its own
         // neighbours' pairs were most of the work, and are never wanted), and a plate whose
         // holes lie clear of its edges puts nothing.
-        let near_others = BoxIndex::new(&contour_boxes);
+        // Built only for a contour with many round it (the plate round its holes).
+        let near_others = std::cell::OnceCell::new();
         // Each segment that touches another contour's box, with that contour.
         let mut touching: Vec<(SegRef, Aabb, usize)> = Vec::new();
-        for (c, cc) in contours.iter().enumerate().filter(|&(c, _)| may_meet[c]) {
+        for (c, cc) in contours.iter().enumerate() {
+            let others = &neighbours[c];
+            if others.is_empty() {
+                continue;
+            }
             // A hole's segments are tested against the few boxes round it, not the index.
-            let others: Vec<usize> = near_others
-                .intersecting(&contour_boxes[c])
-                .filter(|&o| o != c)
-                .collect();
             let few = others.len() <= FEW_NEIGHBOURS;
             for (index, s) in cc.contour.segments.iter().enumerate() {
                 let b = s.bbox().inflated(tol.eps);
@@ -255,7 +257,8 @@ impl Meetings {
                     let touched = others.iter().filter(|&&o| contour_boxes[o].intersects(&b));
                     touching.extend(touched.map(|&o| (r, b, o)));
                 } else {
-                    let touched = near_others.intersecting(&b).filter(|&o| o != c);
+                    let tree = near_others.get_or_init(|| BoxIndex::new(&contour_boxes));
+                    let touched = tree.intersecting(&b).filter(|&o| o != c);
                     touching.extend(touched.map(|o| (r, b, o)));
                 }
             }
