@@ -153,9 +153,11 @@ fn narrow_leaves_cleared_by_one_pass_each_leave_nothing() {
     };
     let plan = pocketeer::clear::plan_pocket(&pocket, &params, &Tolerance::default()).unwrap();
     let passes = (plan.parts.iter().flat_map(|p| &p.spots))
-        .filter(|s| s.segments.iter().map(Segment::length).sum::<f64>() > 1.0)
+        .filter(|s| s.path.segments.iter().map(Segment::length).sum::<f64>() > 1.0)
         .count();
     assert_eq!(passes, 2, "a pass each side of the island");
+    // A pass is cut along its length, not stopped short as a spot at one point may be.
+    assert!((plan.parts.iter().flat_map(|p| &p.spots)).all(|s| s.left.is_none()));
     let o = run(&[pocket], 6.0, 2.4, 3.0, Entry::Helix, Dialect::Grbl);
     assert_clean(&o, 3.0);
 }

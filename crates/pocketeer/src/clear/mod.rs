@@ -131,11 +131,48 @@ pub struct Part {
     /// Paths between this part and its children that must also be cut to leave nothing
     /// (empty whenever the stepover is at most the tool radius).
     pub cleanups: Vec<Path>,
-    /// Short paths through the spots from which the tool clears what small leaves of this
-    /// part would have, in their place (see [`plan_pocket`]); each lies within a leaf's loop,
-    /// a stepover or so inside this part's loops, and is cut from the last of them passing
-    /// near it.
-    pub spots: Vec<Path>,
+    /// The spots from which the tool clears what small leaves of this part would have, in
+    /// their place (see [`plan_pocket`]); each lies within a leaf's loop, a stepover or so
+    /// inside this part's loops, and is cut from the last of them passing near it.
+    pub spots: Vec<Spot>,
+}
+
+/// Where the tool clears what a small leaf of a part would have (see [`Part::spots`]): a short
+/// path ending at one point, or a pass along the middle of a long narrow leaf; for one point,
+/// also what the tool must sweep there, so that it may stop short of the point, on its way in
+/// from a loop, where it already sweeps all of that (see [`Spot::clears_from`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spot {
+    /// The path: from a little inside the leaf's loop to the point, or the pass.
+    pub path: Path,
+    /// For one point: the outlines of what is left for the spot, and how near the tool centre
+    /// must be to every point of them (a little less than the tool radius).
+    pub left: Option<(Vec<Contour>, f64)>,
+}
+
+impl Spot {
+    /// True when the tool centre at `p` is near enough to every point of what is left for a
+    /// spot at one point to sweep all of it: exact, by the farthest point of each outline
+    /// segment; false for a pass.
+    ///
+    /// ```
+    /// use pocketeer::clear::{Path, Spot};
+    /// use pocketeer::geom::{Contour, Line, Point, Segment};
+    /// let p = Point::new;
+    /// // A square of side 2 left round (10, 10), to be within 2 mm of the tool centre.
+    /// let left = Contour::polygon(&[p(9.0, 9.0), p(11.0, 9.0), p(11.0, 11.0), p(9.0, 11.0)]);
+    /// let path = Path { segments: vec![Segment::Line(Line::new(p(10.0, 9.7), p(10.0, 10.0)))], closed: false };
+    /// let spot = Spot { path, left: Some((vec![left], 2.0)) };
+    /// assert!(spot.clears_from(p(10.0, 10.0)));
+    /// // Below the middle, the far corners are √(1 + 2.2²) > 2 away.
+    /// assert!(spot.clears_from(p(10.0, 9.5)) && !spot.clears_from(p(10.0, 8.8)));
+    /// ```
+    pub fn clears_from(&self, p: Point) -> bool {
+        self.left.as_ref().is_some_and(|(left, reach)| {
+            (left.iter().flat_map(|c| &c.segments))
+                .all(|s| crate::geom::farthest_from_segment(s, p) <= *reach)
+        })
+    }
 }
 
 impl Part {
@@ -146,7 +183,7 @@ impl Part {
 
     /// The clean-up paths, then the spots: what the part cuts besides its loops.
     pub fn paths(&self) -> impl Iterator<Item = &Path> {
-        self.cleanups.iter().chain(&self.spots)
+        self.cleanups.iter().chain(self.spots.iter().map(|s| &s.path))
     }
 }
 

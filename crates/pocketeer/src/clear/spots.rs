@@ -24,7 +24,7 @@
 //! steps of about 5 mm out from the last loop round a hole beside them and back (linking
 //! bench: 2586.6 -> 2326.0 s of machining).
 
-use super::{ClearParams, ClearPlan, Part, Path};
+use super::{ClearParams, ClearPlan, Part, Path, Spot};
 use crate::geom::{
     closest_point, distance_from_segment, enclosing_circle, farthest_from_segment, intersect, nearest_on,
     outline_points, Contour, Line, Point, Segment, Tolerance, Vector,
@@ -51,7 +51,7 @@ pub fn clear_leaves_from_spots(plan: &mut ClearPlan, params: &ClearParams, tol: 
     let (mut gone, mut tried) = (vec![false; n], vec![false; n]);
     // Spots added here, by part: a part with only these is still a leaf that a spot may
     // clear (its own spot covers theirs).
-    let mut spots: Vec<Vec<Path>> = vec![Vec::new(); n];
+    let mut spots: Vec<Vec<Spot>> = vec![Vec::new(); n];
     // In rounds: the leaves first, on all cores (a plate has hundreds), then the parts all of
     // whose children went, and so on.
     loop {
@@ -71,10 +71,10 @@ pub fn clear_leaves_from_spots(plan: &mut ClearPlan, params: &ClearParams, tol: 
             tried[i] = true;
             let parent = plan.parts[i].parent.unwrap_or(i);
             match found {
-                Some(Spot::Nothing) => gone[i] = true,
-                Some(Spot::At(path)) => {
+                Some(Found::Nothing) => gone[i] = true,
+                Some(Found::At(spot)) => {
                     gone[i] = true;
-                    spots[parent].push(path);
+                    spots[parent].push(spot);
                 }
                 None => {}
             }
@@ -104,16 +104,16 @@ fn takes_part(plan: &ClearPlan, i: usize, gone: &[bool]) -> bool {
 }
 
 /// What clears a leaf besides its parent's loops.
-enum Spot {
+enum Found {
     /// Nothing is left for it.
     Nothing,
-    /// The tool at the end of this path clears what is.
-    At(Path),
+    /// The tool at the end of this spot's path, or along it, clears what is.
+    At(Spot),
 }
 
 /// What the leaf `part` leaves beyond its parent's reach, `reach` inside its loop: None when
 /// neither one spot nor one straight path clears it (or the leaf cannot be eroded).
-fn spot(part: &Part, reach: f64, r: f64, tol: &Tolerance) -> Option<Spot> {
+fn spot(part: &Part, reach: f64, r: f64, tol: &Tolerance) -> Option<Found> {
     if reach < 0.0 {
         return None;
     }
@@ -123,15 +123,24 @@ fn spot(part: &Part, reach: f64, r: f64, tol: &Tolerance) -> Option<Spot> {
         vec![part.outer.clone()]
     };
     if left.is_empty() {
-        return Some(Spot::Nothing);
+        return Some(Found::Nothing);
     }
     let limit = r * (1.0 - MARGIN_RADII);
     let points: Vec<Point> = left.iter().flat_map(|c| outline_points(&c.segments)).collect();
-    let path =
-        one_point(part, &left, &points, limit, r).or_else(|| spine(part, &left, &points, limit, r, tol))?;
-    Some(Spot::At(Path {
-        segments: vec![Segment::Line(path)],
+    let path = |line| Path {
+        segments: vec![Segment::Line(line)],
         closed: false,
+    };
+    if let Some(line) = one_point(part, &left, &points, limit, r) {
+        return Some(Found::At(Spot {
+            path: path(line),
+            left: Some((left, limit)),
+        }));
+    }
+    let line = spine(part, &left, &points, limit, r, tol)?;
+    Some(Found::At(Spot {
+        path: path(line),
+        left: None,
     }))
 }
 
@@ -336,7 +345,7 @@ mod tests {
         assert!(plan.parts.iter().all(|p| p.level < 3), "{:?}", plan.distances);
         let spots: Vec<Point> = (plan.parts.iter())
             .flat_map(|p| &p.spots)
-            .map(|c| c.segments[0].end())
+            .map(|c| c.path.segments[0].end())
             .collect();
         assert_eq!(spots.len(), 4);
         for s in spots {
@@ -405,13 +414,18 @@ mod tests {
             ]))
         };
         let tol = Tolerance::default();
-        let Some(Spot::At(point)) = spot(&rectangle(2.5, 2.5), 0.6, 3.0, &tol) else {
+        let Some(Found::At(Spot { path: point, left })) = spot(&rectangle(2.5, 2.5), 0.6, 3.0, &tol) else {
             panic!("one spot clears it");
         };
         let end = point.segments[0].end();
+        assert!(left.is_some(), "what it answers for, to stop short");
         assert!(end.distance(p(10.0, 10.0)) < 1e-9, "the spot at {end:?}");
         assert!(point.segments[0].length() > 0.0);
-        let Some(Spot::At(pass)) = spot(&rectangle(2.8, 2.5), 0.6, 3.0, &tol) else {
+        let Some(Found::At(Spot {
+            path: pass,
+            left: None,
+        })) = spot(&rectangle(2.8, 2.5), 0.6, 3.0, &tol)
+        else {
             panic!("one pass clears it");
         };
         let (a, b) = (pass.segments[0].start(), pass.segments[0].end());
@@ -423,7 +437,7 @@ mod tests {
         assert!(spot(&rectangle(3.5, 3.5), 0.6, 3.0, &tol).is_none());
         assert!(matches!(
             spot(&rectangle(0.5, 0.5), 0.6, 3.0, &tol),
-            Some(Spot::Nothing)
+            Some(Found::Nothing)
         ));
         assert!(
             spot(&rectangle(2.5, 2.5), -0.1, 3.0, &tol).is_none(),
@@ -456,7 +470,7 @@ mod tests {
             p(22.0, 14.0),
             p(10.0, 14.0),
         ]));
-        let Some(Spot::At(path)) = spot(&leaf, 0.6, 3.0, &Tolerance::default()) else {
+        let Some(Found::At(Spot { path, .. })) = spot(&leaf, 0.6, 3.0, &Tolerance::default()) else {
             panic!("one pass clears it");
         };
         let Segment::Line(l) = path.segments[0] else {

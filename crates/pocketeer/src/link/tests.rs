@@ -342,7 +342,8 @@ fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
     // The same plate: at 7.8 mm from the walls what is left between four holes is a small
     // diamond, cleared by the tool standing at its middle (see `clear::spots`). The tool goes
     // there once the loops at 5.4 mm round its four holes are cut, straight out from the
-    // last of them and back, instead of first, through full stock.
+    // last of them and back, instead of first, through full stock; and only as far as where
+    // it first sweeps all that is left there, short of the middle.
     let (pocket, centres) = plate_of_holes(4, 3);
     let (l, plan, _) = linked_plan(&pocket, 2.4, Entry::Helix);
     let diamonds: Vec<Point> = (1..4)
@@ -365,9 +366,20 @@ fn the_space_between_four_holes_is_cut_from_the_last_loop_round_them() {
     for d in diamonds {
         let four: Vec<Point> = centres.iter().copied().filter(|c| c.distance(d) < 15.0).collect();
         assert_eq!(four.len(), 4);
+        let spot = (plan.parts.iter().flat_map(|p| &p.spots))
+            .find(|s| s.path.ends().1.distance(d) < 1e-6)
+            .unwrap_or_else(|| panic!("a spot at the middle of the diamond at {d:?}"));
         let first = (0..moves.len())
-            .find(|&k| moves[k].1.to().z == -2.0 && moves[k].1.to().xy().distance(d) < 1e-6)
-            .unwrap_or_else(|| panic!("the middle of the diamond at {d:?} is reached"));
+            .find(|&k| moves[k].1.to().z == -2.0 && spot.clears_from(moves[k].1.to().xy()))
+            .unwrap_or_else(|| panic!("the tool sweeps what is left of the diamond at {d:?}"));
+        let stop = moves[first].1.to().xy();
+        // What is left is a star whose four points reach 2.67 mm from the middle, between the
+        // holes, to be within 2.85 mm of the tool: the tool may stop 0.24 mm short, no more.
+        let short = stop.distance(d);
+        assert!(
+            (0.2..0.25).contains(&short),
+            "the tool stops {short} mm short of the middle of the diamond at {d:?}"
+        );
         // Out from a loop round one of the four holes: straight to the spot's path, then along
         // it to the middle, or straight to the middle.
         let (out, host) = [first, first - 1]
