@@ -73,7 +73,10 @@ const DETOUR_STEP_RADII: f64 = 0.25;
 
 /// How many times the way in to a spot is halved to find where the tool first sweeps all
 /// that the spot answers for (see [`Linker::stop_short`]): to 1/256 of the way, hundredths
-/// of a millimetre for the few millimetres a spot lies from a loop.
+/// of a millimetre for the few millimetres a spot lies from a loop. Each halving tests every
+/// segment of what is left: on the 300-hole plate at 40 % they are 1.2 % of the instructions
+/// of `pocket` (whole, 1.020 of them before the spots stopped short); at six halvings
+/// (1/64), 0.8 %, and the program 10 mm longer.
 const SPOT_STOP_HALVINGS: u32 = 8;
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
@@ -1090,11 +1093,9 @@ impl<'a> Linker<'a> {
         if spot.clears_from(p) {
             return Some(Err(()));
         }
-        if !spot.clears_from(c) {
-            return None;
-        }
         // The way in from `p` towards `c` enters the points the tool sweeps it all from, a
-        // convex set (every disc round a point of what is left holds them), once.
+        // convex set (every disc round a point of what is left holds them), once; `c` is one
+        // of them (the plan found the spot so), and the halving ends there at worst.
         let (mut out, mut within) = (0.0, 1.0);
         for _ in 0..SPOT_STOP_HALVINGS {
             let mid = 0.5 * (out + within);
