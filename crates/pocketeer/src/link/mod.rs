@@ -982,9 +982,9 @@ impl<'a> Linker<'a> {
                 let c = match c {
                     Excursion::Cleanup(c) => c,
                     Excursion::Spot(spot) => match self.stop_short(segments, spot) {
-                        Some(Ok(stop)) => return Some(stop),
-                        Some(Err(())) => return None,
-                        None => &spot.path,
+                        SpotStop::Short(stop) => return Some(stop),
+                        SpotStop::Swept => return None,
+                        SpotStop::AlongPath => &spot.path,
                     },
                     Excursion::Leaf(leaf, chain, from) => {
                         // A leaf's loops: from the walk's point nearest to the outermost, round
@@ -1081,17 +1081,18 @@ impl<'a> Linker<'a> {
     /// point nearest to it, only as far as where the tool first sweeps all the spot answers
     /// for (see [`Spot::clears_from`]), found by halving the way [`SPOT_STOP_HALVINGS`] times,
     /// and back. The tool need not reach the point itself: on the 300-hole plate the spot
-    /// between four holes is 4.7 mm from the loops round them, and what is left there lies
-    /// within 1.7 mm of it. `Err` when the walk itself sweeps it all (nothing to cut); None
-    /// for a pass, or when the straight way in would not keep the tool radius from the walls,
-    /// or would cross a leaf not cut yet: the spot is then cut along its path.
-    fn stop_short(&self, segments: &[Segment], spot: &Spot) -> Option<Result<Stop, ()>> {
-        spot.left.as_ref()?;
+    /// between four holes is 4.74 mm from the loops round them, and what is left there, a
+    /// star, reaches 2.67 mm from it, within the 2.85 mm the tool must keep: the tool stops
+    /// 0.25 mm short.
+    fn stop_short(&self, segments: &[Segment], spot: &Spot) -> SpotStop {
+        if spot.left.is_none() {
+            return SpotStop::AlongPath;
+        }
         let c = spot.path.ends().1;
         let (k, t, _) = nearest_on(segments, c);
         let p = segments[k].point_at(t);
         if spot.clears_from(p) {
-            return Some(Err(()));
+            return SpotStop::Swept;
         }
         // The way in from `p` towards `c` enters the points the tool sweeps it all from, a
         // convex set (every disc round a point of what is left holds them), once; `c` is one
@@ -1107,8 +1108,11 @@ impl<'a> Linker<'a> {
         }
         let x = p.lerp(c, within);
         let r = self.plan().tool_radius;
-        self.stays_inside(p, x, r)
-            .then(|| Ok((k, t, vec![Segment::Line(crate::geom::Line::new(p, x))], None)))
+        if self.stays_inside(p, x, r) {
+            SpotStop::Short((k, t, vec![Segment::Line(crate::geom::Line::new(p, x))], None))
+        } else {
+            SpotStop::AlongPath
+        }
     }
 
     /// From the end of `walk` (a leaf's loop just cut, closed, the tool at its end) in to the
@@ -1739,6 +1743,18 @@ impl UncutLeaves {
 /// the walk, the parameter on it, the path to follow from there, and for a leaf its part and
 /// the way back.
 type Stop = (usize, f64, Vec<Segment>, Option<(usize, Vec<Segment>)>);
+
+/// How a spot is cut from a walk (see [`Linker::stop_short`]).
+enum SpotStop {
+    /// Straight in to where the tool first sweeps all the spot answers for, and back.
+    Short(Stop),
+    /// Not at all: the tool on the walk sweeps it all already.
+    Swept,
+    /// Along the spot's path, as any clean-up path: a pass along a long narrow leaf, or a
+    /// spot whose straight way in would come nearer the walls than the tool radius or cross a
+    /// leaf not cut yet.
+    AlongPath,
+}
 
 /// What is cut on the way round a loop, as an excursion from it (see [`Linker::excursions`]).
 enum Excursion {
