@@ -71,13 +71,13 @@ const HOST_REACH_RADII: f64 = 2.0;
 /// enough for the passages between neighbouring loops, coarse enough for a few hundred points.
 const DETOUR_STEP_RADII: f64 = 0.25;
 
-/// How many times the way in to a spot is halved to find where the tool first sweeps all
-/// that the spot answers for (see [`Linker::stop_short`]): to 1/256 of the way, hundredths
-/// of a millimetre for the few millimetres a spot lies from a loop. Each halving tests every
-/// segment of what is left: on the 300-hole plate at 40 % they are 1.2 % of the instructions
-/// of `pocket` (whole, 1.020 of them before the spots stopped short); at six halvings
-/// (1/64), 0.8 %, and the program 10 mm longer.
-const SPOT_STOP_HALVINGS: u32 = 8;
+/// To what share of the way in to a spot the point where the tool first sweeps all that the
+/// spot answers for is found, by halving (see [`Linker::stop_short`]): 1/256, eight halvings,
+/// hundredths of a millimetre for the few millimetres a spot lies from a loop. Each halving
+/// tests every segment of what is left: on the 300-hole plate at 40 % they are 1.2 % of the
+/// instructions of `pocket` (whole, 1.020 of them before the spots stopped short); at 1/64,
+/// 0.8 %, and the program 10 mm longer.
+const SPOT_STOP_RESOLUTION: f64 = 1.0 / 256.0;
 
 /// Which way the tool goes round, for a spindle turning clockwise seen from above (M3).
 ///
@@ -1079,8 +1079,8 @@ impl<'a> Linker<'a> {
 
     /// Where a spot at one point is cut from the walk `segments`: straight in from the walk's
     /// point nearest to it, only as far as where the tool first sweeps all the spot answers
-    /// for (see [`Spot::clears_from`]), found by halving the way [`SPOT_STOP_HALVINGS`] times,
-    /// and back. The tool need not reach the point itself: on the 300-hole plate the spot
+    /// for (see [`Spot::clears_from`]), found by halving the way to [`SPOT_STOP_RESOLUTION`]
+    /// of it, and back. The tool need not reach the point itself: on the 300-hole plate the spot
     /// between four holes is 4.74 mm from the loops round them, and what is left there, a
     /// star, reaches 2.67 mm from it, within the 2.85 mm the tool must keep: the tool stops
     /// 0.25 mm short.
@@ -1097,15 +1097,7 @@ impl<'a> Linker<'a> {
         // The way in from `p` towards `c` enters the points the tool sweeps it all from, a
         // convex set (every disc round a point of what is left holds them), once; `c` is one
         // of them (the plan found the spot so), and the halving ends there at worst.
-        let (mut out, mut within) = (0.0, 1.0);
-        for _ in 0..SPOT_STOP_HALVINGS {
-            let mid = 0.5 * (out + within);
-            if spot.clears_from(p.lerp(c, mid)) {
-                within = mid;
-            } else {
-                out = mid;
-            }
-        }
+        let within = route::earliest(0.0, 1.0, SPOT_STOP_RESOLUTION, |t| spot.clears_from(p.lerp(c, t)));
         let x = p.lerp(c, within);
         let r = self.plan().tool_radius;
         if self.stays_inside(p, x, r) {

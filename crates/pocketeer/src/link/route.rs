@@ -165,7 +165,7 @@ pub fn leave_early_hinted(
 
 /// The least length in (`lo`, `hi`] at which `ok` holds, to within `resolution`, by halving:
 /// `ok(hi)` holds, `ok(lo)` does not.
-fn earliest(mut lo: f64, mut hi: f64, resolution: f64, ok: impl Fn(f64) -> bool) -> f64 {
+pub(super) fn earliest(mut lo: f64, mut hi: f64, resolution: f64, ok: impl Fn(f64) -> bool) -> f64 {
     while hi - lo > resolution {
         let mid = 0.5 * (lo + hi);
         if ok(mid) {
