@@ -8,6 +8,11 @@
 //! for it from `DIR/<name>.nc` (made by `scripts/freecad-compare`, which runs both) and adds its
 //! time, retracts, check and our time's ratio to it, both checked and timed alike.
 //!
+//! `--breakdown` prints instead where each program's time goes: the plan's loops, its clean-up
+//! paths and spots, each cut once at the feed; the feed moves at depth off the plan; the rest
+//! of the cutting (entries, descents at the feed, helices at the cutting feed); rapids. With
+//! `--freecad DIR`, FreeCAD's time beside it.
+//!
 //! "off the plan" is the length of feed moves at depth that follow no loop, clean-up path or
 //! spot of the plan: links, steps from loop to loop, ways out to clean-up paths and back.
 //!
@@ -291,8 +296,14 @@ fn main() {
     let only = flag(&args, "--only");
     let dxf_dir = flag(&args, "--dxf").map(PathBuf::from);
     let freecad_dir = flag(&args, "--freecad").map(PathBuf::from);
+    let breakdown = args.iter().any(|a| a == "--breakdown");
     let tol = Tolerance::default();
-    if freecad_dir.is_some() {
+    if breakdown {
+        println!(
+            "| drawing | time s | loops s | clean-up paths s | spots s | off the plan s | entries and the rest of the feed s | rapids s | FreeCAD time s |"
+        );
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    } else if freecad_dir.is_some() {
         println!(
             "| drawing | time s | FreeCAD time s | ratio | loops and clean-up alone s | its ratio | retracts | FreeCAD retracts | cutting mm | off the plan mm | FreeCAD cutting mm | FreeCAD gouge mm | FreeCAD thickest leftover mm |"
         );
@@ -305,6 +316,7 @@ fn main() {
     }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
     let (mut freecad_time, mut ours_beside_freecad, mut paths_time) = (0.0, 0.0, 0.0);
+    let mut breakdown_total = BreakdownTotal::default();
     // With --dxf: each drawing's file name, tool diameter and stepover (%), for the script
     // that has FreeCAD pocket them.
     let mut manifest = String::new();
@@ -367,6 +379,28 @@ fn main() {
         total_time += report.seconds;
         total_with += with;
         total_retracts += report.retracts;
+        if breakdown {
+            let theirs = freecad_dir.as_ref().and_then(|dir| {
+                let text = std::fs::read_to_string(dir.join(format!("{}.nc", slug(&d.name)))).ok()?;
+                checked(&d, &text, &tol).ok()
+            });
+            let parts = Breakdown::of(&job.plans, &link.time, &job.linked.toolpath, off, report.seconds);
+            let freecad = theirs.as_ref().map(|f| f.seconds);
+            breakdown_total.add(&parts, report.seconds, freecad);
+            println!(
+                "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+                d.name,
+                report.seconds,
+                parts.loops,
+                parts.cleanups,
+                parts.spots,
+                parts.off_plan,
+                parts.rest,
+                parts.rapids,
+                freecad.map_or_else(|| "-".to_string(), |f| format!("{f:.1}")),
+            );
+            continue;
+        }
         if let Some(dir) = &freecad_dir {
             let path = dir.join(format!("{}.nc", slug(&d.name)));
             let theirs = std::fs::read_to_string(&path)
@@ -419,7 +453,9 @@ fn main() {
     if let Some(dir) = &dxf_dir {
         std::fs::write(dir.join("drawings.tsv"), manifest).expect("the list of drawings is written");
     }
-    if freecad_dir.is_some() {
+    if breakdown {
+        breakdown_total.print();
+    } else if freecad_dir.is_some() {
         println!(
             "| total | {ours_beside_freecad:.1} | {freecad_time:.1} | {:.3} | {paths_time:.1} | {:.3} | | | | | | | |",
             ours_beside_freecad / freecad_time,
@@ -462,6 +498,97 @@ fn off_the_plan(path: &Toolpath, plans: &[pocketeer::clear::ClearPlan], z: f64) 
         at = to;
     }
     off
+}
+
+/// Where a program's time goes, seconds (see the `--breakdown` flag).
+struct Breakdown {
+    loops: f64,
+    cleanups: f64,
+    spots: f64,
+    off_plan: f64,
+    rest: f64,
+    rapids: f64,
+}
+
+impl Breakdown {
+    /// The program `path` for `plans`, `off` mm of it at depth off the plan, `seconds` in all,
+    /// timed in `time`.
+    fn of(
+        plans: &[pocketeer::clear::ClearPlan],
+        time: &pocketeer::machining_time::TimeModel,
+        path: &Toolpath,
+        off: f64,
+        seconds: f64,
+    ) -> Breakdown {
+        let parts = || plans.iter().flat_map(|p| &p.parts);
+        // From +0: an empty sum is -0.
+        let length = |segments: &mut dyn Iterator<Item = &Segment>| segments.fold(0.0, |t, s| t + s.length());
+        let at_feed = |mm: f64| time.feed_seconds(mm, time.feed);
+        let loops = at_feed(length(
+            &mut parts().flat_map(|p| p.loops()).flat_map(|c| &c.segments),
+        ));
+        let cleanups = at_feed(length(
+            &mut parts().flat_map(|p| &p.cleanups).flat_map(|c| &c.segments),
+        ));
+        let spots = at_feed(length(
+            &mut parts().flat_map(|p| &p.spots).flat_map(|s| &s.path.segments),
+        ));
+        let rapids = time.moves(path.moves_from(0)).rapid;
+        let off_plan = at_feed(off);
+        Breakdown {
+            loops,
+            cleanups,
+            spots,
+            off_plan,
+            rest: seconds - loops - cleanups - spots - off_plan - rapids,
+            rapids,
+        }
+    }
+}
+
+/// The sums of the `--breakdown` table's columns; FreeCAD's time only where every drawing has
+/// a program of FreeCAD's.
+#[derive(Default)]
+struct BreakdownTotal {
+    seconds: f64,
+    parts: [f64; 6],
+    freecad: Option<f64>,
+    drawings: usize,
+}
+
+impl BreakdownTotal {
+    fn add(&mut self, b: &Breakdown, seconds: f64, freecad: Option<f64>) {
+        self.seconds += seconds;
+        for (t, x) in self
+            .parts
+            .iter_mut()
+            .zip([b.loops, b.cleanups, b.spots, b.off_plan, b.rest, b.rapids])
+        {
+            *t += x;
+        }
+        self.freecad = match (self.drawings, self.freecad, freecad) {
+            (0, _, f) => f,
+            (_, Some(t), Some(f)) => Some(t + f),
+            _ => None,
+        };
+        self.drawings += 1;
+    }
+
+    fn print(&self) {
+        let p = &self.parts;
+        println!(
+            "| total | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+            self.seconds,
+            p[0],
+            p[1],
+            p[2],
+            p[3],
+            p[4],
+            p[5],
+            self.freecad
+                .map_or_else(|| "-".to_string(), |f| format!("{f:.1}"))
+        );
+    }
 }
 
 /// Seconds to cut the loops and clean-up paths of `plans` at the feed, nothing else.
