@@ -316,7 +316,7 @@ fn main() {
     }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
     let (mut freecad_time, mut ours_beside_freecad, mut paths_time) = (0.0, 0.0, 0.0);
-    let mut breakdown_total = BreakdownTotal::default();
+    let mut breakdown_total = BreakdownTotal::new();
     // With --dxf: each drawing's file name, tool diameter and stepover (%), for the script
     // that has FreeCAD pocket them.
     let mut manifest = String::new();
@@ -379,33 +379,15 @@ fn main() {
         total_time += report.seconds;
         total_with += with;
         total_retracts += report.retracts;
+        let theirs = freecad_dir.as_ref().map(|dir| freecad_report(dir, &d, &tol));
         if breakdown {
-            let theirs = freecad_dir.as_ref().and_then(|dir| {
-                let text = std::fs::read_to_string(dir.join(format!("{}.nc", slug(&d.name)))).ok()?;
-                checked(&d, &text, &tol).ok()
-            });
             let parts = Breakdown::of(&job.plans, &link.time, &job.linked.toolpath, off, report.seconds);
-            let freecad = theirs.as_ref().map(|f| f.seconds);
-            breakdown_total.add(&parts, report.seconds, freecad);
-            println!(
-                "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
-                d.name,
-                report.seconds,
-                parts.loops,
-                parts.cleanups,
-                parts.spots,
-                parts.off_plan,
-                parts.rest,
-                parts.rapids,
-                freecad.map_or_else(|| "-".to_string(), |f| format!("{f:.1}")),
-            );
+            let freecad = theirs.and_then(Result::ok).map(|f| f.seconds);
+            parts.print_row(&d.name, freecad);
+            breakdown_total.add(&parts, freecad);
             continue;
         }
-        if let Some(dir) = &freecad_dir {
-            let path = dir.join(format!("{}.nc", slug(&d.name)));
-            let theirs = std::fs::read_to_string(&path)
-                .map_err(|e| format!("{}: {e}", path.display()))
-                .and_then(|t| checked(&d, &t, &tol));
+        if let Some(theirs) = theirs {
             // The least time any linking of these paths can take: every loop and clean-up
             // path at the feed, with no entry, link or rapid.
             let paths = paths_seconds(&job.plans);
@@ -454,7 +436,7 @@ fn main() {
         std::fs::write(dir.join("drawings.tsv"), manifest).expect("the list of drawings is written");
     }
     if breakdown {
-        breakdown_total.print();
+        breakdown_total.sum.print_row("total", breakdown_total.freecad);
     } else if freecad_dir.is_some() {
         println!(
             "| total | {ours_beside_freecad:.1} | {freecad_time:.1} | {:.3} | {paths_time:.1} | {:.3} | | | | | | | |",
@@ -501,7 +483,9 @@ fn off_the_plan(path: &Toolpath, plans: &[pocketeer::clear::ClearPlan], z: f64) 
 }
 
 /// Where a program's time goes, seconds (see the `--breakdown` flag).
+#[derive(Default)]
 struct Breakdown {
+    seconds: f64,
     loops: f64,
     cleanups: f64,
     spots: f64,
@@ -520,22 +504,17 @@ impl Breakdown {
         off: f64,
         seconds: f64,
     ) -> Breakdown {
-        let parts = || plans.iter().flat_map(|p| &p.parts);
-        // From +0: an empty sum is -0.
-        let length = |segments: &mut dyn Iterator<Item = &Segment>| segments.fold(0.0, |t, s| t + s.length());
+        let lengths = PlanLengths::of(plans);
         let at_feed = |mm: f64| time.feed_seconds(mm, time.feed);
-        let loops = at_feed(length(
-            &mut parts().flat_map(|p| p.loops()).flat_map(|c| &c.segments),
-        ));
-        let cleanups = at_feed(length(
-            &mut parts().flat_map(|p| &p.cleanups).flat_map(|c| &c.segments),
-        ));
-        let spots = at_feed(length(
-            &mut parts().flat_map(|p| &p.spots).flat_map(|s| &s.path.segments),
-        ));
+        let (loops, cleanups, spots) = (
+            at_feed(lengths.loops),
+            at_feed(lengths.cleanups),
+            at_feed(lengths.spots),
+        );
         let rapids = time.moves(path.moves_from(0)).rapid;
         let off_plan = at_feed(off);
         Breakdown {
+            seconds,
             loops,
             cleanups,
             spots,
@@ -544,70 +523,82 @@ impl Breakdown {
             rapids,
         }
     }
+
+    /// The table's row `name`, with FreeCAD's time where there is one.
+    fn print_row(&self, name: &str, freecad: Option<f64>) {
+        println!(
+            "| {name} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+            self.seconds,
+            self.loops,
+            self.cleanups,
+            self.spots,
+            self.off_plan,
+            self.rest,
+            self.rapids,
+            freecad.map_or_else(|| "-".to_string(), |f| format!("{f:.1}")),
+        );
+    }
 }
 
-/// The sums of the `--breakdown` table's columns; FreeCAD's time only where every drawing has
-/// a program of FreeCAD's.
-#[derive(Default)]
+/// The sum of the `--breakdown` table's rows; FreeCAD's time only while every drawing has a
+/// program of FreeCAD's.
 struct BreakdownTotal {
-    seconds: f64,
-    parts: [f64; 6],
+    sum: Breakdown,
     freecad: Option<f64>,
-    drawings: usize,
 }
 
 impl BreakdownTotal {
-    fn add(&mut self, b: &Breakdown, seconds: f64, freecad: Option<f64>) {
-        self.seconds += seconds;
-        for (t, x) in self
-            .parts
-            .iter_mut()
-            .zip([b.loops, b.cleanups, b.spots, b.off_plan, b.rest, b.rapids])
-        {
-            *t += x;
+    fn new() -> BreakdownTotal {
+        BreakdownTotal {
+            sum: Breakdown::default(),
+            freecad: Some(0.0),
         }
-        self.freecad = match (self.drawings, self.freecad, freecad) {
-            (0, _, f) => f,
-            (_, Some(t), Some(f)) => Some(t + f),
-            _ => None,
-        };
-        self.drawings += 1;
     }
 
-    fn print(&self) {
-        let p = &self.parts;
-        println!(
-            "| total | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
-            self.seconds,
-            p[0],
-            p[1],
-            p[2],
-            p[3],
-            p[4],
-            p[5],
-            self.freecad
-                .map_or_else(|| "-".to_string(), |f| format!("{f:.1}"))
-        );
+    fn add(&mut self, b: &Breakdown, freecad: Option<f64>) {
+        let s = &mut self.sum;
+        s.seconds += b.seconds;
+        s.loops += b.loops;
+        s.cleanups += b.cleanups;
+        s.spots += b.spots;
+        s.off_plan += b.off_plan;
+        s.rest += b.rest;
+        s.rapids += b.rapids;
+        self.freecad = self.freecad.zip(freecad).map(|(t, f)| t + f);
+    }
+}
+
+/// Lengths of a plan's paths, mm: its loops, clean-up paths and spots.
+struct PlanLengths {
+    loops: f64,
+    cleanups: f64,
+    spots: f64,
+}
+
+impl PlanLengths {
+    fn of(plans: &[pocketeer::clear::ClearPlan]) -> PlanLengths {
+        let parts = || plans.iter().flat_map(|p| &p.parts);
+        // From +0: an empty sum is -0.
+        let length = |segments: &mut dyn Iterator<Item = &Segment>| segments.fold(0.0, |t, s| t + s.length());
+        PlanLengths {
+            loops: length(&mut parts().flat_map(|p| p.loops()).flat_map(|c| &c.segments)),
+            cleanups: length(&mut parts().flat_map(|p| &p.cleanups).flat_map(|c| &c.segments)),
+            spots: length(&mut parts().flat_map(|p| &p.spots).flat_map(|s| &s.path.segments)),
+        }
     }
 }
 
 /// Seconds to cut the loops and clean-up paths of `plans` at the feed, nothing else.
 fn paths_seconds(plans: &[pocketeer::clear::ClearPlan]) -> f64 {
-    let length: f64 = plans
-        .iter()
-        .flat_map(|p| &p.parts)
-        .map(|part| {
-            let loops: f64 = part.loops().flat_map(|c| &c.segments).map(|s| s.length()).sum();
-            let cleanups: f64 = part
-                .cleanups
-                .iter()
-                .flat_map(|c| &c.segments)
-                .map(|s| s.length())
-                .sum();
-            loops + cleanups
-        })
-        .sum();
-    length / FEED * 60.0
+    let lengths = PlanLengths::of(plans);
+    (lengths.loops + lengths.cleanups) / FEED * 60.0
+}
+
+/// FreeCAD's program for the drawing `d`, `DIR/<name>.nc`, replayed as [`checked`] does ours.
+fn freecad_report(dir: &std::path::Path, d: &Drawing, tol: &Tolerance) -> Result<CheckReport, String> {
+    let path = dir.join(format!("{}.nc", slug(&d.name)));
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    checked(d, &text, tol)
 }
 
 /// The program `text` replayed against the drawing: time at the fixed rates from lengths alone
