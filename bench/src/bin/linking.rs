@@ -310,9 +310,9 @@ fn main() {
         println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     } else {
         println!(
-            "| drawing | time s | time s, 0.5 s a retract | cutting mm | off the plan mm | rapid mm | retracts | p95 engagement ° | p95 touching stock ° | max ° | > 150 % | gouge mm | thickest leftover mm |"
+            "| drawing | time s | time s, 0.5 s a retract | cutting mm | off the plan mm | rapid mm | retracts | p95 engagement ° | p95 touching stock ° | max ° | > 150 % | touching no stock % | gouge mm | thickest leftover mm |"
         );
-        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     }
     let (mut total_time, mut total_with, mut total_retracts) = (0.0, 0.0, 0);
     let (mut freecad_time, mut ours_beside_freecad, mut paths_time) = (0.0, 0.0, 0.0);
@@ -417,7 +417,7 @@ fn main() {
             continue;
         }
         println!(
-            "| {} | {:.1} | {:.1} | {:.1} | {off:.1} | {:.1} | {} | {:.0} | {:.0} | {:.0} | {:.1} | {:.4} | {:.4} |",
+            "| {} | {:.1} | {:.1} | {:.1} | {off:.1} | {:.1} | {} | {:.0} | {:.0} | {:.0} | {:.1} | {:.1} | {:.4} | {:.4} |",
             d.name,
             report.seconds,
             with,
@@ -428,6 +428,7 @@ fn main() {
             e.p95_in_contact_deg,
             e.max_deg,
             e.above_150_percent,
+            e.untouched_percent,
             report.gouge,
             report.thickest
         );
@@ -444,7 +445,7 @@ fn main() {
             paths_time / freecad_time
         );
     } else {
-        println!("| total | {total_time:.1} | {total_with:.1} | | | | {total_retracts} | | | | | | |");
+        println!("| total | {total_time:.1} | {total_with:.1} | | | | {total_retracts} | | | | | | | |");
     }
 }
 

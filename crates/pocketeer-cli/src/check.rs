@@ -440,7 +440,7 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
         Some(at) => {
             let _ = writeln!(
                 s,
-                "tool engagement           max {:.0}° at line {} (X{:.3} Y{:.3}), 95 % of the {:.1} mm cut at one height at or below {:.0}° ({:.0}° of the length touching stock), {:.1} % above 90°, {:.1} % above 150° (entries not counted; sampled every {}° round the tool, {:.3} mm along)",
+                "tool engagement           max {:.0}° at line {} (X{:.3} Y{:.3}), 95 % of the {:.1} mm cut at one height at or below {:.0}° ({:.0}° of the length touching stock), {:.1} % above 90°, {:.1} % above 150°, {:.1} % touching no stock (entries not counted; sampled every {}° round the tool, {:.3} mm along)",
                 e.max_deg,
                 at.line,
                 at.x,
@@ -450,6 +450,7 @@ pub fn to_text(r: &CheckReport, params: &CheckParams) -> String {
                 e.p95_in_contact_deg,
                 e.above_90_percent,
                 e.above_150_percent,
+                e.untouched_percent,
                 e.angle_step_deg,
                 e.spacing
             );

@@ -61,6 +61,10 @@ pub struct Engagement {
     pub above_90_percent: f64,
     /// Share of the cutting length with more than 150°, percent.
     pub above_150_percent: f64,
+    /// Share of the cutting length where the tool touches no stock (0°), percent: links fed
+    /// through cleared stock, and loops cut again where the stock is gone already. Time the
+    /// program spends cutting air.
+    pub untouched_percent: f64,
     /// Cutting length in each band of [`BAND_DEG`] degrees, from 0°: the last band holds 360°.
     pub histogram: Vec<f64>,
 }
@@ -268,6 +272,7 @@ fn summarize(
     let p95 = percentile(&samples, 0.95);
     let in_contact = samples.partition_point(|s| s.0 <= 0.0);
     let p95_in_contact = percentile(&samples[in_contact..], 0.95);
+    let untouched: f64 = samples[..in_contact].iter().map(|s| s.1).sum();
     let percent = |x: f64| if total > 0.0 { 100.0 * x / total } else { 0.0 };
     Engagement {
         angle_step_deg: ANGLE_STEP_DEG,
@@ -280,6 +285,7 @@ fn summarize(
         p95_in_contact_deg: p95_in_contact,
         above_90_percent: percent(above_90),
         above_150_percent: percent(above_150),
+        untouched_percent: percent(untouched),
         histogram,
     }
 }
@@ -438,5 +444,19 @@ mod tests {
         assert_eq!(e.p95_deg, 0.0, "{e:?}");
         assert!((e.p95_in_contact_deg - 180.0).abs() <= ANGLE_STEP_DEG, "{e:?}");
         assert!(e.histogram[0] >= 1009.0, "{e:?}");
+        // 1010 of the 1050 mm touch no stock, to a sample's length.
+        let spacing_share = 100.0 * e.spacing / 1050.0;
+        assert!(
+            (e.untouched_percent - 100.0 * 1010.0 / 1050.0).abs() <= spacing_share,
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn a_slot_touches_stock_all_along() {
+        let r = 3.0;
+        let moves = vec![feed(1, (0.0, 0.0, -1.0), (50.0, 0.0, -1.0))];
+        let e = engagement(&moves, &CutHistory::new(&moves, r), r);
+        assert_eq!(e.untouched_percent, 0.0, "{e:?}");
     }
 }
