@@ -20,6 +20,7 @@
 //! band the part's own loops are about to clear. Other moves retract to the safe height and
 //! come down again where the stock is already cleared, or enter anew.
 
+mod air;
 mod detour;
 mod entry;
 mod ladder;
@@ -249,7 +250,16 @@ pub fn link_with(
     tol: &Tolerance,
     progress: &dyn crate::progress::Progress,
 ) -> Result<Linked, LinkError> {
-    link_hosting(jobs, params, tol, progress, None)
+    let linked = link_hosting(jobs, params, tol, progress, None)?;
+    // Stretches through stock already cleared are shortened where every plan has one tool.
+    let radius = jobs.first().map(|(_, plan)| plan.tool_radius);
+    let toolpath = match radius {
+        Some(r) if jobs.iter().all(|(_, plan)| plan.tool_radius == r) => {
+            air::shortcut_air(linked.toolpath, r)
+        }
+        _ => linked.toolpath,
+    };
+    Ok(Linked { toolpath, ..linked })
 }
 
 /// Where a part's clean-up paths are cut (see [`Linker::cut_part`]).
@@ -264,8 +274,9 @@ enum Hosting {
     Never,
 }
 
-/// [`link_with`], the clean-up paths cut where `hosting` says, or the way that takes less
-/// time, part by part (`None`, see [`Linker::cut_part_timed`]).
+/// [`link_with`] before stretches through cleared stock are shortened (see [`air`]), the
+/// clean-up paths cut where `hosting` says, or the way that takes less time, part by part
+/// (`None`, see [`Linker::cut_part_timed`]).
 fn link_hosting(
     jobs: &[(&PreparedPocket, &ClearPlan)],
     params: &LinkParams,
