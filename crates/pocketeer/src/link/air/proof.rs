@@ -493,4 +493,49 @@ mod tests {
         );
         assert!((first_reach(&longer, Point::new(44.0, 4.5), 3.0) - (15.0 + 3.0 + 21.0)).abs() < 1e-9);
     }
+
+    proptest::proptest! {
+        /// Whatever a chain is proven not to sweep anew lies within the tool radius of the
+        /// earlier moves: passes a random spacing apart across a strip and a move at random,
+        /// then a chain of two straight moves at random in and about the strip, its sweep
+        /// sampled densely wherever the proof says it sweeps nothing new.
+        #[test]
+        fn what_is_proven_to_sweep_nothing_lies_in_the_earlier_sweeps(
+            r in 1.0..4.0f64, spacing in 0.5..1.95f64, passes in 2..6usize,
+            extra in proptest::array::uniform4(0.0..30.0f64),
+            chain in proptest::array::uniform6(-2.0..32.0f64),
+        ) {
+            let mut earlier_moves: Vec<Segment> = (0..passes)
+                .map(|i| {
+                    let y = i as f64 * spacing * r;
+                    if i % 2 == 0 { line(0.0, y, 30.0, y) } else { line(30.0, y, 0.0, y) }
+                })
+                .collect();
+            earlier_moves.push(line(extra[0], extra[1] * 0.3, extra[2], extra[3] * 0.3));
+            let c = cover(&earlier_moves, r);
+            let earlier = Earlier { cover: &c, before: earlier_moves.len(), extra: None };
+            let y = |v: f64| v * (passes as f64 * spacing * r) / 30.0 - r;
+            let moves = [
+                line(chain[0], y(chain[1]), chain[2], y(chain[3])),
+                line(chain[2], y(chain[3]), chain[4], y(chain[5])),
+            ];
+            if sweeps_nothing(&earlier, &moves, &mut Scratch::default()) == Proof::Nothing {
+                for m in &moves {
+                    for k in 0..=64 {
+                        let p = m.point_at(k as f64 / 64.0);
+                        for j in 0..24 {
+                            let angle = TAU * j as f64 / 24.0;
+                            for rho in [0.0, 0.5, 0.9, 0.999] {
+                                let q = Point::new(p.x + rho * r * angle.cos(), p.y + rho * r * angle.sin());
+                                let nearest = (earlier_moves.iter())
+                                    .map(|s| distance_from_segment(s, q))
+                                    .fold(f64::INFINITY, f64::min);
+                                proptest::prop_assert!(nearest <= r * (1.0 + 1e-6), "{q:?} {nearest}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
