@@ -745,6 +745,19 @@ fn the_tool_retracts_from_where_it_cut_not_after_a_step_through_cleared_stock() 
     assert!(total < 10.0, "retracts after {idle:?} mm through cleared stock");
 }
 
+/// A rectangle with 4 × 3 round islands of radius 5, `pitch` apart and from its corner.
+fn island_grid(pitch: f64) -> Pocket {
+    Pocket {
+        boundary: rect(0.0, 0.0, 5.0 * pitch, 4.0 * pitch),
+        islands: (0..12)
+            .map(|k| {
+                let c = Point::new(pitch * (1 + k % 4) as f64, pitch * (1 + k / 4) as f64);
+                Contour::new(vec![Segment::Arc(Arc::circle(c, 5.0))]).reversed()
+            })
+            .collect(),
+    }
+}
+
 /// The time of the program linked with its clean-up paths cut where `hosting` says (`None`:
 /// the fastest way, part by part), checked for gouges.
 fn hosted_seconds(plan: &ClearPlan, prepared: &PreparedPocket, hosting: Option<Hosting>) -> f64 {
@@ -763,15 +776,7 @@ fn clean_up_paths_are_cut_the_faster_way_part_by_part() {
     // apart and 85 %, where this was so before the clean-up pieces round one patch of
     // material gave way to one spot or pass, excursions are now the faster by 6 s). Either
     // way the program takes the least time of the two.
-    let grid = Pocket {
-        boundary: rect(0.0, 0.0, 90.0, 72.0),
-        islands: (0..12)
-            .map(|k| {
-                let c = Point::new(18.0 + 18.0 * (k % 4) as f64, 18.0 + 18.0 * (k / 4) as f64);
-                Contour::new(vec![Segment::Arc(Arc::circle(c, 5.0))]).reversed()
-            })
-            .collect(),
-    };
+    let grid = island_grid(18.0);
     let mut slower = [0, 0];
     for (pocket, stepover) in [(two_islands(120.0, 60.0, [35.0, 85.0]), 4.2), (grid, 4.8)] {
         let (plan, prepared) = planned(&pocket, stepover);
@@ -1189,15 +1194,7 @@ fn stretches_through_cleared_stock_are_cut_short_and_the_stock_left_is_the_same(
     // of its cutting touching no stock); replayed, it gouges nowhere, leaves what the
     // linker's own program leaves, and the tool meets the stock as hard.
     use crate::simulate::{check_program, read_program, CheckParams};
-    let grid = Pocket {
-        boundary: rect(0.0, 0.0, 100.0, 80.0),
-        islands: (0..12)
-            .map(|k| {
-                let c = Point::new(20.0 + 20.0 * (k % 4) as f64, 20.0 + 20.0 * (k / 4) as f64);
-                Contour::new(vec![Segment::Arc(Arc::circle(c, 5.0))]).reversed()
-            })
-            .collect(),
-    };
+    let grid = island_grid(20.0);
     let (plan, prepared) = planned(&grid, 2.4);
     let p = params(Entry::Helix);
     let job = [(&prepared, &plan)];
