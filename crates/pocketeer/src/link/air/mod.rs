@@ -201,17 +201,7 @@ impl Probes<'_> {
         while self.sweep + 1 < ends.len() && ends[self.sweep] < s {
             self.sweep += 1;
         }
-        let start = if self.sweep == 0 {
-            0.0
-        } else {
-            ends[self.sweep - 1]
-        };
-        let len = ends[self.sweep] - start;
-        let t = if len > 0.0 {
-            ((s - start) / len).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        let t = walk.param_on(self.sweep, s);
         let segment = &cover.sweeps[walk.first + self.sweep].segment;
         let (p, tangent) = (segment.point_at(t), segment.tangent_at(t));
         let reach = r * (1.0 + 1e-9);
@@ -253,18 +243,22 @@ impl Walk {
     /// The sweep (index in the cover) and its parameter at length `s` along the walk.
     fn locate(&self, s: f64) -> (usize, f64) {
         let j = self.ends.partition_point(|&e| e < s).min(self.ends.len() - 1);
+        (self.first + j, self.param_on(j, s))
+    }
+
+    /// The parameter on the walk's `j`-th sweep (from its first) at length `s` along the walk.
+    fn param_on(&self, j: usize, s: f64) -> f64 {
         let start = if j == 0 { 0.0 } else { self.ends[j - 1] };
         let len = self.ends[j] - start;
         // Within rounding of a move's end is at it.
         let snap = 1e-12 * (1.0 + self.ends[j]);
-        let t = if self.ends[j] - s <= snap {
+        if self.ends[j] - s <= snap {
             1.0
         } else if len > 0.0 {
             ((s - start) / len).clamp(0.0, 1.0)
         } else {
             0.0
-        };
-        (self.first + j, t)
+        }
     }
 
     /// The walk's point at length `s` along it: a move's own end exactly where `s` is there (a

@@ -404,17 +404,22 @@ mod tests {
         Cover::new(sweeps, r).unwrap()
     }
 
+    /// What the first `before` moves of `c` swept.
+    fn all_before(c: &Cover, before: usize) -> Earlier<'_> {
+        Earlier {
+            cover: c,
+            before,
+            extra: None,
+        }
+    }
+
     #[test]
     fn a_pass_between_two_overlapping_ones_sweeps_nothing() {
         // Two passes 4 mm apart with a 3 mm radius: a third between them, 2 mm from each,
         // sweeps only what they swept; one 3 mm from the lower sweeps a sliver above the
         // upper's edge (y 7 to 7.5).
         let c = cover(&[line(0.0, 0.0, 40.0, 0.0), line(40.0, 4.0, 0.0, 4.0)], 3.0);
-        let earlier = Earlier {
-            cover: &c,
-            before: 2,
-            extra: None,
-        };
+        let earlier = all_before(&c, 2);
         assert_eq!(
             sweeps_nothing(&earlier, &[line(10.0, 2.0, 30.0, 2.0)], &mut Scratch::default()),
             Proof::Nothing
@@ -445,11 +450,7 @@ mod tests {
         // a move down the middle cuts it, though its probes across every 0.75 mm land on the
         // strip only if they fall in it.
         let c = cover(&[line(0.0, 0.0, 40.0, 0.0), line(40.0, 6.2, 0.0, 6.2)], 3.0);
-        let earlier = Earlier {
-            cover: &c,
-            before: 2,
-            extra: None,
-        };
+        let earlier = all_before(&c, 2);
         let found = sweeps_nothing(&earlier, &[line(10.0, 3.1, 30.0, 3.1)], &mut Scratch::default());
         assert!(
             matches!(found, Proof::CutsAt(q) if (3.0..=3.2).contains(&q.y)),
@@ -473,11 +474,7 @@ mod tests {
             ],
             3.0,
         );
-        let earlier = Earlier {
-            cover: &c,
-            before: 3,
-            extra: None,
-        };
+        let earlier = all_before(&c, 3);
         let chain = [
             line(5.0, 1.5, 20.0, 1.5),
             line(20.0, 1.5, 20.0, 4.5),
@@ -513,7 +510,7 @@ mod tests {
                 .collect();
             earlier_moves.push(line(extra[0], extra[1] * 0.3, extra[2], extra[3] * 0.3));
             let c = cover(&earlier_moves, r);
-            let earlier = Earlier { cover: &c, before: earlier_moves.len(), extra: None };
+            let earlier = all_before(&c, earlier_moves.len());
             let y = |v: f64| v * (passes as f64 * spacing * r) / 30.0 - r;
             let moves = [
                 line(chain[0], y(chain[1]), chain[2], y(chain[3])),
