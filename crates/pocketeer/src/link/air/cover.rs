@@ -6,6 +6,7 @@
 //! straight line between its ends stands for them as that line, with a radius smaller by `δ`.
 //! Its sweep lies inside theirs, so what is proven against it holds against them.
 
+use super::rows::row_spans;
 use crate::geom::{distance_from_segment, Aabb, Line, Point, Segment};
 
 /// Most cells of a cover's grid: where the tool is small against the drawing the cells grow
@@ -119,7 +120,7 @@ impl Cover {
         }
         // The runs each cell lists, gathered in path order and sorted by cell (stable, by
         // counting): each list ends up in path order.
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(4 * cover.runs.len());
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(spans);
         for i in 0..cover.runs.len() {
             cover.for_each_cell_reached(i, |c| pairs.push((c as u32, i as u32)));
         }
@@ -146,19 +147,27 @@ impl Cover {
         self.run_of[i] as usize
     }
 
-    /// Calls `f` with every cell that holds a point within the radius of run `i`'s path.
+    /// Calls `f` with every cell that holds a point within the radius of run `i`'s path (and
+    /// maybe a few more): those of the cells its box spans whose centre lies within the radius
+    /// and half a cell's diagonal, row by row.
     fn for_each_cell_reached(&self, i: usize, mut f: impl FnMut(usize)) {
         let s = &self.runs[i];
         let (x0, y0, x1, y1) = self.cell_range(&s.bbox.inflated(self.r));
-        let half_diagonal = 0.5 * std::f64::consts::SQRT_2 * self.cell;
+        // A hair more, so that rounding in the spans loses no centre at the limit.
+        let reach = (self.r + 0.5 * std::f64::consts::SQRT_2 * self.cell) * (1.0 + 1e-9);
         for y in y0..=y1 {
-            for x in x0..=x1 {
-                let centre = Point::new(
-                    self.origin.x + (x as f64 + 0.5) * self.cell,
-                    self.origin.y + (y as f64 + 0.5) * self.cell,
-                );
-                if distance_from_segment(&s.segment, centre) <= self.r + half_diagonal {
-                    f(y * self.nx + x);
+            let centre_y = self.origin.y + (y as f64 + 0.5) * self.cell;
+            for (lo, hi) in row_spans(&s.segment, &s.bbox, centre_y, reach)
+                .into_iter()
+                .flatten()
+            {
+                // The columns whose centres lie in the span, within the box's.
+                let first = ((lo - self.origin.x) / self.cell - 0.5).ceil().max(x0 as f64);
+                let last = ((hi - self.origin.x) / self.cell - 0.5).floor().min(x1 as f64);
+                if first <= last {
+                    for x in first as usize..=last as usize {
+                        f(y * self.nx + x);
+                    }
                 }
             }
         }
@@ -166,7 +175,9 @@ impl Cover {
 
     /// The cells a box spans, clamped to the grid: first and last column, first and last row.
     fn cell_range(&self, b: &Aabb) -> (usize, usize, usize, usize) {
-        let at = |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        // Truncation is the floor of what is not negative (and `floor` is a call on x86-64's
+        // baseline instruction set).
+        let at = |v: f64, o: f64, n: usize| (((v - o) / self.cell).max(0.0) as usize).min(n - 1);
         (
             at(b.min.x, self.origin.x, self.nx),
             at(b.min.y, self.origin.y, self.ny),
@@ -175,16 +186,22 @@ impl Cover {
         )
     }
 
+    /// The runs listed in cell `c`, in path order.
+    fn listed_in(&self, c: usize) -> &[u32] {
+        &self.entries[self.starts[c] as usize..self.starts[c + 1] as usize]
+    }
+
     /// The runs before `before` listed in cell `c`.
     fn listed_before(&self, c: usize, before: usize) -> &[u32] {
-        let list = &self.entries[self.starts[c] as usize..self.starts[c + 1] as usize];
+        let list = self.listed_in(c);
         &list[..list.partition_point(|&i| (i as usize) < before)]
     }
 
     /// The cell holding `p`, if the grid does (no sweep reaches a point outside it).
     fn cell_of(&self, p: Point) -> Option<usize> {
-        let x = ((p.x - self.origin.x) / self.cell).floor();
-        let y = ((p.y - self.origin.y) / self.cell).floor();
+        // Truncated where not negative: the floor (see `cell_range`).
+        let x = (p.x - self.origin.x) / self.cell;
+        let y = (p.y - self.origin.y) / self.cell;
         (x >= 0.0 && y >= 0.0 && (x as usize) < self.nx && (y as usize) < self.ny)
             .then(|| y as usize * self.nx + x as usize)
     }
@@ -193,23 +210,29 @@ impl Cover {
     /// (at most the tool radius): its path nearer than `reach` less its shrink. `hint` is the
     /// one that answered last (asked first) and is left at the one that answers.
     pub fn reaches(&self, p: Point, reach: f64, before: usize, hint: &mut usize) -> bool {
+        self.reaches_by(p, reach, before, hint).is_some()
+    }
+
+    /// [`Cover::reaches`], and by how much: how much nearer than `reach` less its shrink the
+    /// run that answers (left in `hint`) comes to `p`. Every point nearer to `p` than that is
+    /// reached by it too.
+    pub fn reaches_by(&self, p: Point, reach: f64, before: usize, hint: &mut usize) -> Option<f64> {
         if reach <= 0.0 {
-            return false;
+            return None;
         }
-        let near = |s: &Run| distance_from_segment(&s.segment, p) < reach - s.shrink;
-        if *hint < before && self.runs.get(*hint).is_some_and(near) {
-            return true;
+        let by = |s: &Run| Some(reach - s.shrink - distance_from_segment(&s.segment, p)).filter(|&m| m > 0.0);
+        if let Some(m) = self.runs[..before.min(self.runs.len())].get(*hint).and_then(by) {
+            return Some(m);
         }
-        let Some(c) = self.cell_of(p) else {
-            return false;
-        };
+        let c = self.cell_of(p)?;
         let reach_sq = reach * reach;
-        let found = (self.listed_before(c, before).iter())
-            .find(|&&i| self.runs[i as usize].bbox.distance_sq(p) < reach_sq && near(&self.runs[i as usize]));
-        if let Some(&i) = found {
-            *hint = i as usize;
-        }
-        found.is_some()
+        // The list is in path order: scanned up to `before` (no search for where that is).
+        let (i, m) = (self.listed_in(c).iter())
+            .take_while(|&&i| (i as usize) < before)
+            .filter(|&&i| self.runs[i as usize].bbox.distance_sq(p) < reach_sq)
+            .find_map(|&i| by(&self.runs[i as usize]).map(|m| (i as usize, m)))?;
+        *hint = i;
+        Some(m)
     }
 
     /// Adds to `cells` the cells that `b` spans.

@@ -13,6 +13,7 @@
 
 mod cover;
 mod proof;
+mod rows;
 
 use super::walk::emit;
 use crate::geom::{Line, Point, Segment};
@@ -32,6 +33,23 @@ const LEAST_CHORD_GAIN_RADII: f64 = 0.05;
 /// How many stations apart the coarse probes of a walk are (see [`Walk::stretches`]).
 const COARSE_STEP: usize = 4;
 
+/// How many coarse stations apart the first probed along a walk are (a power of two; see
+/// [`Station`]).
+const WIDEST_COARSE: usize = 4;
+
+/// What is known of a coarse station of a walk. The coarse stations are probed widest apart
+/// first, then halfway between: one between two in stock is probed only where the walk between
+/// those two could gain enough (as a stretch must, and none between them gains more), and is
+/// sealed otherwise, as is one beside a sealed one (it lies between the same two).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Station {
+    Unknown,
+    Covered,
+    InStock,
+    /// Not probed: no stretch through it can gain enough.
+    Sealed,
+}
+
 /// Most coarse stations of a walk for each of its moves, and besides (the bench's drawings
 /// probe 3 to 25 for each).
 const MOST_STATIONS_PER_MOVE: usize = 64;
@@ -45,6 +63,9 @@ const AHEAD: [(f64, f64); 3] = [(0.999_999, 0.0), (DIAGONAL, DIAGONAL), (DIAGONA
 
 /// Along and across for a probe in front of the tool at 45°, just inside its circle.
 const DIAGONAL: f64 = 0.999_999 * std::f64::consts::FRAC_1_SQRT_2;
+
+/// Probes of a station in all.
+const PROBES: usize = ACROSS.len() + AHEAD.len();
 
 /// The shortest stretch that is split to be proven in parts, in tool radii.
 const FINEST_STRETCH_RADII: f64 = 0.5;
@@ -184,28 +205,27 @@ struct Walk {
 struct Probes<'w> {
     walk: &'w Walk,
     cover: &'w Cover,
-    /// The walk's sweep (from its first) that the last station lay on.
-    sweep: usize,
-    hint: usize,
+    /// For each probe, the run that held it last (asked first): the runs beside a walk change
+    /// seldom, and each side has its own.
+    hints: [usize; PROBES],
+    /// For each probe, where that run was found to hold it and by how much: while the probe
+    /// stays nearer than that to where it was, the run holds it still.
+    held: [(Point, f64); PROBES],
     /// The probe that lay in stock at the last station that was not covered.
     failed: usize,
 }
 
 impl Probes<'_> {
-    /// True when the station `s` along the walk, at or beyond the last, has all its probes
-    /// (across the sweep and in front) in what the moves before its own swept.
+    /// True when the station `s` along the walk has all its probes (across the sweep and in
+    /// front) in what the moves before its own swept.
     fn covered(&mut self, s: f64) -> bool {
         let (walk, cover) = (self.walk, self.cover);
         let r = cover.r;
-        let ends = &walk.ends;
-        while self.sweep + 1 < ends.len() && ends[self.sweep] < s {
-            self.sweep += 1;
-        }
-        let t = walk.param_on(self.sweep, s);
-        let segment = &cover.sweeps[walk.first + self.sweep].segment;
+        let (i, t) = walk.locate(s);
+        let segment = &cover.sweeps[i].segment;
         let (p, tangent) = (segment.point_at(t), segment.tangent_at(t));
         let reach = r * (1.0 + 1e-9);
-        let before = cover.runs_before(walk.first + self.sweep);
+        let before = cover.runs_before(i);
         let normal = tangent.perp();
         let probe = |k: usize| match k.checked_sub(ACROSS.len()) {
             None => p + normal * (ACROSS[k] * r),
@@ -213,12 +233,19 @@ impl Probes<'_> {
         };
         // The probe that lay in stock at the last station first: along a loop that cuts, the
         // same one does at the next.
-        let n = ACROSS.len() + AHEAD.len();
         let first = self.failed;
-        match (0..n)
-            .map(|k| (first + k) % n)
-            .find(|&k| !cover.reaches(probe(k), reach, before, &mut self.hint))
-        {
+        let (hints, held) = (&mut self.hints, &mut self.held);
+        let mut reached = |k: usize| {
+            let q = probe(k);
+            let (at, by) = held[k];
+            if hints[k] < before && q.distance(at) < by {
+                return true;
+            }
+            let by = cover.reaches_by(q, reach, before, &mut hints[k]);
+            held[k] = (q, by.unwrap_or(0.0));
+            by.is_some()
+        };
+        match (0..PROBES).map(|k| (first + k) % PROBES).find(|&k| !reached(k)) {
             Some(k) => {
                 self.failed = k;
                 false
@@ -305,7 +332,9 @@ impl Walk {
     /// front, against what the moves before the station's swept), and only
     /// between stations whose probes all lie in earlier sweeps can it. Coarse stations
     /// ([`COARSE_STEP`] apart) first; where two neighbours both lie in stock, the walk is
-    /// taken to cut between.
+    /// taken to cut between. Only the stretches that gain enough are wanted (the rest are
+    /// found or not as it comes): stations that could lie only in stretches that gain too
+    /// little are not probed.
     fn stretches(&self, cover: &Cover) -> Vec<(f64, f64)> {
         let r = cover.r;
         let length = self.length();
@@ -320,23 +349,89 @@ impl Walk {
         let mut probes = Probes {
             walk: self,
             cover,
-            sweep: 0,
-            hint: 0,
+            hints: [0; PROBES],
+            held: [(Point::new(0.0, 0.0), 0.0); PROBES],
             failed: 0,
         };
-        let mut probed = vec![false; n + 1];
-        for c in 0..=coarse {
-            probed[c * COARSE_STEP] = probes.covered(at(c * COARSE_STEP));
+        let least = LEAST_GAIN_RADII * r;
+        // The coarse stations, widest apart first and then those halfway between (see
+        // [`Station`]).
+        let mut coarse_at = vec![Station::Unknown; coarse + 1];
+        let probe_coarse = |c: usize, probes: &mut Probes| match probes.covered(at(c * COARSE_STEP)) {
+            true => Station::Covered,
+            false => Station::InStock,
+        };
+        for c in (0..coarse).step_by(WIDEST_COARSE).chain([coarse]) {
+            coarse_at[c] = probe_coarse(c, &mut probes);
         }
-        probes.sweep = 0;
-        for c in 0..coarse {
-            let (a, b) = (c * COARSE_STEP, (c + 1) * COARSE_STEP);
-            if probed[a] || probed[b] {
-                for (i, p) in probed.iter_mut().enumerate().take(b).skip(a + 1) {
-                    *p = probes.covered(at(i));
+        let mut half = WIDEST_COARSE / 2;
+        while half >= 1 {
+            for c in (half..coarse).step_by(2 * half) {
+                let (a, b) = (c - half, (c + half).min(coarse));
+                // A stretch between two stations in stock holds only the stations between.
+                let span = || self.gain(cover, at(a * COARSE_STEP + 1), at(b * COARSE_STEP - 1));
+                coarse_at[c] = match (coarse_at[a], coarse_at[b]) {
+                    (Station::Covered, _) | (_, Station::Covered) => probe_coarse(c, &mut probes),
+                    (Station::InStock, Station::InStock) if span() >= least => probe_coarse(c, &mut probes),
+                    _ => Station::Sealed,
+                };
+            }
+            half /= 2;
+        }
+        // Every station: covered, in stock, or not known. The fine ones are probed only beside
+        // a covered coarse one (else taken to be in stock).
+        let mut known: Vec<Option<bool>> = (0..=n)
+            .map(|i| {
+                let c = i / COARSE_STEP;
+                if i % COARSE_STEP == 0 {
+                    Some(coarse_at[c] == Station::Covered)
+                } else if coarse_at[c] == Station::Covered || coarse_at[c + 1] == Station::Covered {
+                    None
+                } else {
+                    Some(false)
                 }
+            })
+            .collect();
+        // Between two stations in stock (or the walk's ends), the stations not known are probed
+        // only while the stretch of all between could gain enough (a stretch's gain only grows
+        // as it is lengthened): first those at either end, which narrow the span where they lie
+        // in stock, then the rest in order, each one in stock splitting it.
+        let bounds: Vec<usize> = (0..=n).filter(|&i| known[i] == Some(false)).collect();
+        let spans = (std::iter::once(0).chain(bounds.iter().map(|&b| b + 1)))
+            .zip(bounds.iter().map(|&b| b.wrapping_sub(1)).chain([n]));
+        for (mut first, mut last) in spans {
+            'span: while first < last && last <= n {
+                if self.gain(cover, at(first), at(last)) < least {
+                    break;
+                }
+                for end in [first, last] {
+                    if known[end].is_none() {
+                        let covered = probes.covered(at(end));
+                        known[end] = Some(covered);
+                        if !covered {
+                            (first, last) = if end == first {
+                                (first + 1, last)
+                            } else {
+                                (first, last - 1)
+                            };
+                            continue 'span;
+                        }
+                    }
+                }
+                for (i, k) in known.iter_mut().enumerate().take(last).skip(first + 1) {
+                    if k.is_none() {
+                        let covered = probes.covered(at(i));
+                        *k = Some(covered);
+                        if !covered {
+                            first = i + 1;
+                            continue 'span;
+                        }
+                    }
+                }
+                break;
             }
         }
+        let probed: Vec<bool> = known.iter().map(|k| *k == Some(true)).collect();
         let mut out = Vec::new();
         let mut i = 0;
         while i <= n {
