@@ -56,6 +56,25 @@ pub struct Run {
     pub smooth_next: bool,
 }
 
+/// The run that reached a point last (see [`Cover::reaches_held`]): how near, its path less
+/// its shrink, it came to where.
+#[derive(Clone, Copy, Debug)]
+pub struct Held {
+    run: usize,
+    at: Point,
+    near: f64,
+}
+
+impl Default for Held {
+    fn default() -> Held {
+        Held {
+            run: 0,
+            at: Point::new(0.0, 0.0),
+            near: f64::INFINITY,
+        }
+    }
+}
+
 /// The sweeps of the tool (every point within `r` of a move's centre path) of the feed moves at
 /// one height, in path order, as runs on a uniform grid: each cell lists, in path order, the
 /// runs whose sweep reaches into it. The runs before a given one are then a prefix of each
@@ -206,16 +225,11 @@ impl Cover {
             .then(|| y as usize * self.nx + x as usize)
     }
 
-    /// True when one of the runs before `before` is proven to reach nearer to `p` than `reach`
-    /// (at most the tool radius): its path nearer than `reach` less its shrink. `hint` is the
-    /// one that answered last (asked first) and is left at the one that answers.
-    pub fn reaches(&self, p: Point, reach: f64, before: usize, hint: &mut usize) -> bool {
-        self.reaches_by(p, reach, before, hint).is_some()
-    }
-
-    /// [`Cover::reaches`], and by how much: how much nearer than `reach` less its shrink the
-    /// run that answers (left in `hint`) comes to `p`. Every point nearer to `p` than that is
-    /// reached by it too.
+    /// By how much one of the runs before `before` is proven to reach nearer to `p` than
+    /// `reach` (at most the tool radius), if one does: how much nearer than `reach` less its
+    /// shrink its path comes to `p` (every point nearer to `p` than that is reached by it
+    /// too). `hint` is the one that answered last (asked first) and is left at the one that
+    /// answers.
     pub fn reaches_by(&self, p: Point, reach: f64, before: usize, hint: &mut usize) -> Option<f64> {
         if reach <= 0.0 {
             return None;
@@ -233,6 +247,26 @@ impl Cover {
             .find_map(|&i| by(&self.runs[i as usize]).map(|m| (i as usize, m)))?;
         *hint = i;
         Some(m)
+    }
+
+    /// Whether one of the runs before `before` reaches nearer to `p` than `reach` (see
+    /// [`Cover::reaches_by`]), for queries near one another (along a walk, along an edge):
+    /// `held` is what answered the last, and a point that lies near enough to where it held
+    /// answers without a distance (distances change no faster than the point moves).
+    pub fn reaches_held(&self, p: Point, reach: f64, before: usize, held: &mut Held) -> bool {
+        if held.run < before && held.near + p.distance(held.at) < reach {
+            return true;
+        }
+        match self.reaches_by(p, reach, before, &mut held.run) {
+            Some(by) => {
+                (held.at, held.near) = (p, reach - by);
+                true
+            }
+            None => {
+                held.near = f64::INFINITY;
+                false
+            }
+        }
     }
 
     /// Adds to `cells` the cells that `b` spans.
@@ -383,13 +417,15 @@ mod tests {
         assert_eq!(cover.runs.len(), 3);
         let mut hint = 0;
         let p = Point::new(25.0, 2.9);
-        assert!(cover.reaches(p, 3.0, 1, &mut hint));
-        assert!(!cover.reaches(p, 2.8, 1, &mut hint));
-        assert!(!cover.reaches(p, 3.0, 0, &mut hint));
+        assert!(cover.reaches_by(p, 3.0, 1, &mut hint).is_some());
+        assert!(cover.reaches_by(p, 2.8, 1, &mut hint).is_none());
+        assert!(cover.reaches_by(p, 3.0, 0, &mut hint).is_none());
         let q = Point::new(25.0, 12.5);
-        assert!(!cover.reaches(q, 3.0, 1, &mut hint));
-        assert!(cover.reaches(q, 3.0, 2, &mut hint));
-        assert!(!cover.reaches(Point::new(-100.0, 0.0), 3.0, 3, &mut hint));
+        assert!(cover.reaches_by(q, 3.0, 1, &mut hint).is_none());
+        assert!(cover.reaches_by(q, 3.0, 2, &mut hint).is_some());
+        assert!(cover
+            .reaches_by(Point::new(-100.0, 0.0), 3.0, 3, &mut hint)
+            .is_none());
         let mut cells = Vec::new();
         cover.cells_of(
             &Aabb::from_points(Point::new(20.0, 9.0), Point::new(21.0, 11.0)),
@@ -397,6 +433,26 @@ mod tests {
         );
         let near: Vec<usize> = cells.iter().flat_map(|&c| cover.listed(c, 3)).collect();
         assert!(near.contains(&1) && !near.contains(&0));
+    }
+
+    #[test]
+    fn what_held_a_point_holds_the_points_near_it_and_no_farther() {
+        let cover = Cover::new(
+            vec![sweep(0.0, 0.0, 50.0, 0.0, 0), sweep(0.0, 4.0, 50.0, 4.0, 1)],
+            3.0,
+        )
+        .unwrap();
+        let mut held = Held::default();
+        assert!(cover.reaches_held(Point::new(10.0, 1.0), 3.0, 1, &mut held));
+        assert!((held.near - 1.0).abs() < 1e-12);
+        // Within 2 of where it held: held still, where it was found.
+        assert!(cover.reaches_held(Point::new(10.0, 2.9), 3.0, 1, &mut held));
+        assert_eq!(held.at, Point::new(10.0, 1.0));
+        // Farther: measured again, and out of reach of the first move.
+        assert!(!cover.reaches_held(Point::new(10.0, 3.5), 3.0, 1, &mut held));
+        // The second move reaches it, but only from the second on.
+        assert!(cover.reaches_held(Point::new(10.0, 3.5), 3.0, 2, &mut held));
+        assert!(!cover.reaches_held(Point::new(10.0, 3.4), 3.0, 1, &mut held));
     }
 
     #[test]
@@ -411,7 +467,7 @@ mod tests {
             let t = k as f64 / 200.0;
             for u in [-1.99, -1.0, 0.0, 1.0, 1.99] {
                 let p = Point::new(t * d.x + u * n.x / nl, t * d.y + u * n.y / nl);
-                assert!(cover.reaches(p, 2.0, 1, &mut 0), "{p:?} {dl}");
+                assert!(cover.reaches_by(p, 2.0, 1, &mut 0).is_some(), "{p:?} {dl}");
             }
         }
     }

@@ -18,7 +18,7 @@ mod rows;
 use super::walk::emit;
 use crate::geom::{Line, Point, Segment};
 use crate::toolpath::{Feed, Move, Point3, Toolpath};
-use cover::{Cover, Sweep};
+use cover::{Cover, Held, Sweep};
 use proof::{first_reach, sweeps_nothing, Earlier, Proof, Scratch, ACROSS, PROBE_STEP_RADII};
 use std::collections::BTreeMap;
 
@@ -205,12 +205,10 @@ struct Walk {
 struct Probes<'w> {
     walk: &'w Walk,
     cover: &'w Cover,
-    /// For each probe, the run that held it last (asked first): the runs beside a walk change
-    /// seldom, and each side has its own.
-    hints: [usize; PROBES],
-    /// For each probe, where that run was found to hold it and by how much: while the probe
-    /// stays nearer than that to where it was, the run holds it still.
-    held: [(Point, f64); PROBES],
+    /// For each probe, the run that held it last (asked first, and not measured while the
+    /// probe stays near enough to where it held it): the runs beside a walk change seldom, and
+    /// each side has its own.
+    held: [Held; PROBES],
     /// The probe that lay in stock at the last station that was not covered.
     failed: usize,
 }
@@ -234,18 +232,11 @@ impl Probes<'_> {
         // The probe that lay in stock at the last station first: along a loop that cuts, the
         // same one does at the next.
         let first = self.failed;
-        let (hints, held) = (&mut self.hints, &mut self.held);
-        let mut reached = |k: usize| {
-            let q = probe(k);
-            let (at, by) = held[k];
-            if hints[k] < before && q.distance(at) < by {
-                return true;
-            }
-            let by = cover.reaches_by(q, reach, before, &mut hints[k]);
-            held[k] = (q, by.unwrap_or(0.0));
-            by.is_some()
-        };
-        match (0..PROBES).map(|k| (first + k) % PROBES).find(|&k| !reached(k)) {
+        let held = &mut self.held;
+        match (0..PROBES)
+            .map(|k| (first + k) % PROBES)
+            .find(|&k| !cover.reaches_held(probe(k), reach, before, &mut held[k]))
+        {
             Some(k) => {
                 self.failed = k;
                 false
@@ -349,8 +340,7 @@ impl Walk {
         let mut probes = Probes {
             walk: self,
             cover,
-            hints: [0; PROBES],
-            held: [(Point::new(0.0, 0.0), 0.0); PROBES],
+            held: [Held::default(); PROBES],
             failed: 0,
         };
         let least = LEAST_GAIN_RADII * r;

@@ -1,7 +1,7 @@
 //! Proving that the tool, following a chain of segments, sweeps only points that earlier moves
 //! at that height swept.
 
-use super::cover::Cover;
+use super::cover::{Cover, Held};
 use crate::geom::{distance_from_segment, Aabb, Arc, Line, Point, Segment, SegmentIndex};
 use std::f64::consts::TAU;
 
@@ -52,9 +52,10 @@ pub struct Earlier<'c> {
 }
 
 impl Earlier<'_> {
-    /// True when an earlier sweep's path comes nearer to `p` than `reach`.
-    fn reaches(&self, p: Point, reach: f64, hint: &mut usize) -> bool {
-        self.cover.reaches(p, reach, self.before, hint)
+    /// True when an earlier sweep's path comes nearer to `p` than `reach` (`held`: see
+    /// [`Cover::reaches_held`]).
+    fn reaches(&self, p: Point, reach: f64, held: &mut Held) -> bool {
+        self.cover.reaches_held(p, reach, self.before, held)
             || self.extra.is_some_and(|e| distance_from_segment(&e, p) < reach)
     }
 }
@@ -175,16 +176,17 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
     if near.is_empty() {
         return Proof::Cuts;
     }
-    let mut hint = 0;
-    // Quick probes: across the sweep every so often along the run, and its front and back.
+    // Quick probes: across the sweep every so often along the run, and its front and back;
+    // each place across with its own run that held it last.
     let inside = r * (1.0 - 1e-6);
-    let mut probe_at = |p: Point| !earlier.reaches(p, r * (1.0 + 1e-9), &mut hint);
+    let mut held = [Held::default(); ACROSS.len()];
+    let mut probe_at = |p: Point, k: usize| !earlier.reaches(p, r * (1.0 + 1e-9), &mut held[k]);
     let (first, last) = (run[0], run[run.len() - 1]);
     let ends = [
         first.start() - first.tangent_at(0.0) * inside,
         last.end() + last.tangent_at(1.0) * inside,
     ];
-    if let Some(&q) = ends.iter().find(|&&q| probe_at(q)) {
+    if let Some(&q) = ends.iter().find(|&&q| probe_at(q, 2)) {
         return Proof::CutsAt(q);
     }
     let step = PROBE_STEP_RADII * r;
@@ -195,10 +197,9 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
         while at <= len {
             let t = if len > 0.0 { at / len } else { 0.0 };
             let (p, normal) = (s.point_at(t), s.tangent_at(t).perp());
-            if let Some(q) = ACROSS
-                .iter()
-                .map(|&u| p + normal * (u * r))
-                .find(|&q| probe_at(q))
+            if let Some(q) = (ACROSS.iter().enumerate())
+                .map(|(k, &u)| (k, p + normal * (u * r)))
+                .find_map(|(k, q)| probe_at(q, k).then_some(q))
             {
                 return Proof::CutsAt(q);
             }
@@ -206,10 +207,9 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
         }
         to_next = at - len;
     }
-    if let Some(q) = ACROSS
-        .iter()
-        .map(|&u| last.end() + last.tangent_at(1.0).perp() * (u * r))
-        .find(|&q| probe_at(q))
+    if let Some(q) = (ACROSS.iter().enumerate())
+        .map(|(k, &u)| (k, last.end() + last.tangent_at(1.0).perp() * (u * r)))
+        .find_map(|(k, q)| probe_at(q, k).then_some(q))
     {
         return Proof::CutsAt(q);
     }
@@ -220,6 +220,8 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
         .flat_map(|n| edges(&n.segment, n.radius, n.circles))
         .collect();
     let mut budget = MOST_SAMPLES + 4 * edges.len();
+    let (mut work, mut nearest) = (0, None);
+    let mut along_edges = Held::default();
     let mut stack: Vec<(f64, f64)> = Vec::new();
     for edge in &edges {
         let length = edge.length();
@@ -233,7 +235,11 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
             let q = edge.point_at(0.5 * (t0 + t1));
             // Every point of the interval is within half its length of q.
             let h = 0.5 * (t1 - t0) * length;
-            if !run_index.any_within(q, r + h) || earlier.reaches(q, r - h, &mut hint) {
+            // Far from the run's box, or from the run (asked first of the piece that answered
+            // last), or within an earlier sweep: settled.
+            let far = run_box.distance_sq(q) > (r + h) * (r + h)
+                || !run_index.any_within_hinted(q, r + h, &mut work, &mut nearest);
+            if far || earlier.reaches(q, r - h, &mut along_edges) {
                 continue;
             }
             if h <= finest {
