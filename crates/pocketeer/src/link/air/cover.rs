@@ -19,6 +19,9 @@ const MOST_CELLS_PER_RUN: usize = 256;
 /// See [`MOST_CELLS_PER_RUN`].
 const MOST_LISTED: usize = 1 << 20;
 
+/// Runs from which the cells they reach are found on more than one thread.
+const PARALLEL_RUNS: usize = 1024;
+
 /// Moves shorter than this, in tool radii, may be taken in runs.
 const SHORT_RADII: f64 = 0.125;
 
@@ -139,20 +142,33 @@ impl Cover {
         }
         // The runs each cell lists, gathered in path order and sorted by cell (stable, by
         // counting): each list ends up in path order.
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(spans);
-        for i in 0..cover.runs.len() {
-            cover.for_each_cell_reached(i, |c| pairs.push((c as u32, i as u32)));
-        }
+        // The runs in pieces, in order, shared out among threads where they are many.
+        let n = cover.runs.len();
+        let pieces = if n >= PARALLEL_RUNS {
+            16 * crate::parallel::cores()
+        } else {
+            1
+        };
+        let piece = n.div_ceil(pieces).max(1);
+        let ranges: Vec<std::ops::Range<usize>> =
+            (0..n).step_by(piece).map(|a| a..(a + piece).min(n)).collect();
+        let pairs: Vec<Vec<(u32, u32)>> = crate::parallel::map_each(&ranges, |range| {
+            let mut pairs = Vec::with_capacity(spans * range.len() / n.max(1));
+            for i in range.clone() {
+                cover.for_each_cell_reached(i, |c| pairs.push((c as u32, i as u32)));
+            }
+            pairs
+        });
         let mut counts = vec![0u32; nx * ny + 1];
-        for &(c, _) in &pairs {
+        for &(c, _) in pairs.iter().flatten() {
             counts[c as usize + 1] += 1;
         }
         for c in 0..nx * ny {
             counts[c + 1] += counts[c];
         }
         cover.starts.copy_from_slice(&counts);
-        let mut entries = vec![0u32; pairs.len()];
-        for &(c, i) in &pairs {
+        let mut entries = vec![0u32; counts[nx * ny] as usize];
+        for &(c, i) in pairs.iter().flatten() {
             entries[counts[c as usize] as usize] = i;
             counts[c as usize] += 1;
         }
@@ -180,13 +196,22 @@ impl Cover {
                 .into_iter()
                 .flatten()
             {
-                // The columns whose centres lie in the span, within the box's.
-                let first = ((lo - self.origin.x) / self.cell - 0.5).ceil().max(x0 as f64);
-                let last = ((hi - self.origin.x) / self.cell - 0.5).floor().min(x1 as f64);
-                if first <= last {
-                    for x in first as usize..=last as usize {
-                        f(y * self.nx + x);
-                    }
+                // The columns whose centres lie in the span, within the box's: from the first
+                // whole column at or after its start to the last at or before its end
+                // (truncation after the clamp, as `floor` and `ceil` are calls on x86-64's
+                // baseline instruction set).
+                let (a, b) = (
+                    (lo - self.origin.x) / self.cell - 0.5,
+                    (hi - self.origin.x) / self.cell - 0.5,
+                );
+                if !(a <= x1 as f64 && b >= x0 as f64) {
+                    continue;
+                }
+                let a = a.max(x0 as f64);
+                let first = a as usize + usize::from(a > (a as usize) as f64);
+                let last = (b.min(x1 as f64) as usize).min(x1);
+                for x in first..=last {
+                    f(y * self.nx + x);
                 }
             }
         }
@@ -453,6 +478,41 @@ mod tests {
         // The second move reaches it, but only from the second on.
         assert!(cover.reaches_held(Point::new(10.0, 3.5), 3.0, 2, &mut held));
         assert!(!cover.reaches_held(Point::new(10.0, 3.4), 3.0, 1, &mut held));
+    }
+
+    #[test]
+    fn a_cover_built_on_several_threads_answers_as_every_move_measured() {
+        // 1600 moves of 5 mm in a raster of 40 rows, more than are listed on one thread;
+        // points all over it, each asked of the moves before a changing one.
+        let sweeps: Vec<Sweep> = (0..1600)
+            .map(|k| {
+                let (row, col) = ((k / 40) as f64, (k % 40) as f64);
+                let y = row * 2.5 + 0.3 * col;
+                sweep(col * 5.0, y, col * 5.0 + 5.0, y + 1.0, k)
+            })
+            .collect();
+        assert!(sweeps.len() >= PARALLEL_RUNS);
+        let r = 2.0;
+        let cover = Cover::new(sweeps.clone(), r).unwrap();
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..4000 {
+            let p = Point::new(next() * 210.0 - 5.0, next() * 115.0 - 5.0);
+            let before = (next() * 1601.0) as usize;
+            let measured = sweeps[..before]
+                .iter()
+                .any(|s| distance_from_segment(&s.segment, p) < r);
+            assert_eq!(
+                cover.reaches_by(p, r, before, &mut 0).is_some(),
+                measured,
+                "{p:?} {before}"
+            );
+        }
     }
 
     #[test]
