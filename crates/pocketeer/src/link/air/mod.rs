@@ -386,6 +386,7 @@ impl Walk {
         // only while the stretch of all between could gain enough (a stretch's gain only grows
         // as it is lengthened): first those at either end, which narrow the span where they lie
         // in stock, then the rest in order, each one in stock splitting it.
+        // (A station in stock at 0 leaves no span before it: that span's end wraps past `n`.)
         let bounds: Vec<usize> = (0..=n).filter(|&i| known[i] == Some(false)).collect();
         let spans = (std::iter::once(0).chain(bounds.iter().map(|&b| b + 1)))
             .zip(bounds.iter().map(|&b| b.wrapping_sub(1)).chain([n]));
@@ -591,5 +592,105 @@ impl Walk {
             *to = end;
         }
         out.moves
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stretches that gain enough when every station is probed that the probes beside a
+    /// covered coarse station reach (what [`Walk::stretches`] leaves out of that is proven to
+    /// hold none that gain enough).
+    fn probing_every_station(walk: &Walk, cover: &Cover) -> Vec<(f64, f64)> {
+        let r = cover.r;
+        let length = walk.length();
+        let coarse = ((length / (COARSE_STEP as f64 * PROBE_STEP_RADII * r)).ceil() as usize).max(1);
+        let n = coarse * COARSE_STEP;
+        let at = |i: usize| length * i as f64 / n as f64;
+        let mut probes = Probes {
+            walk,
+            cover,
+            held: [Held::default(); PROBES],
+            failed: 0,
+        };
+        let mut covered = vec![false; n + 1];
+        for c in 0..=coarse {
+            covered[c * COARSE_STEP] = probes.covered(at(c * COARSE_STEP));
+        }
+        for c in 0..coarse {
+            let (a, b) = (c * COARSE_STEP, (c + 1) * COARSE_STEP);
+            if covered[a] || covered[b] {
+                for (i, k) in covered.iter_mut().enumerate().take(b).skip(a + 1) {
+                    *k = probes.covered(at(i));
+                }
+            }
+        }
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i <= n {
+            let mut j = i;
+            while covered[i] && j < n && covered[j + 1] {
+                j += 1;
+            }
+            if j > i && walk.gain(cover, at(i), at(j)) >= LEAST_GAIN_RADII * r {
+                out.push((at(i), at(j)));
+            }
+            i = j + 1;
+        }
+        out
+    }
+
+    #[test]
+    fn the_stations_left_unprobed_hold_no_stretch_that_gains_enough() {
+        // A serpentine across a strip, then walks at random over it and beyond, turning
+        // sharply and gently, along lines and arcs.
+        let r = 3.0;
+        let mut path = Toolpath::new(Point3::new(0.0, 0.0, -2.0));
+        for k in 0..12 {
+            let y = k as f64 * 2.4;
+            let x = if k % 2 == 0 { 60.0 } else { 0.0 };
+            path.line(Point3::new(x, y, -2.0), Feed::Cut);
+            path.line(Point3::new(x, y + 2.4, -2.0), Feed::Cut);
+        }
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for walk in 0..6 {
+            path.rapid(Point3::new(next() * 60.0, next() * 28.0, -2.0));
+            for _ in 0..40 {
+                let to = Point3::new(next() * 70.0 - 5.0, next() * 36.0 - 4.0, -2.0);
+                let here = path.position();
+                if walk % 2 == 0 {
+                    let mid = Point::new(0.5 * (here.x + to.x), 0.5 * (here.y + to.y));
+                    path.arc_to(to, mid, std::f64::consts::PI, Feed::Cut);
+                } else {
+                    path.line(to, Feed::Cut);
+                }
+            }
+        }
+        let mut sweeps: Vec<Sweep> = (path.moves_from(0).enumerate())
+            .filter_map(|(k, (from, m))| level_cut(from, m).map(|segment| (k, segment)))
+            .map(|(order, segment)| Sweep {
+                segment,
+                order,
+                smooth_next: false,
+            })
+            .collect();
+        mark_smooth(&mut sweeps, r);
+        let cover = Cover::new(sweeps, r).unwrap();
+        let mut found = 0;
+        for walk in walks(&cover) {
+            let quick: Vec<(f64, f64)> = (walk.stretches(&cover).into_iter())
+                .filter(|&(a, b)| walk.gain(&cover, a, b) >= LEAST_GAIN_RADII * r)
+                .collect();
+            assert_eq!(quick, probing_every_station(&walk, &cover));
+            found += quick.len();
+        }
+        assert!(found >= 20, "{found} stretches that gain enough");
     }
 }
