@@ -73,6 +73,8 @@ mod parallel;
 pub mod post;
 pub mod progress;
 pub mod simulate;
+#[cfg(test)]
+mod test_random;
 pub mod toolpath;
 mod union_find;
 

@@ -347,13 +347,8 @@ mod tests {
     use super::*;
 
     fn boxes(n: usize, seed: u64) -> Vec<Aabb> {
-        let mut s = seed;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = crate::test_random::Lcg::new(seed);
+        let mut next = || random.unit();
         (0..n)
             .map(|_| {
                 let (x, y) = (100.0 * next(), 50.0 * next());
@@ -405,16 +400,11 @@ mod tests {
 
     #[test]
     fn radix_order_is_the_stable_order_by_key() {
-        let mut seed = 12345u64;
+        let mut random = crate::test_random::Lcg::new(12345);
         for n in [0, 1, 5, 255, 256, 1000, 5000] {
             let keys: Vec<u32> = (0..n)
-                .map(|_| {
-                    seed = seed
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    // Few distinct bits, so that ties and skipped passes both happen.
-                    ((seed >> 33) as u32) & 0xFF00_0003
-                })
+                // Few distinct bits, so that ties and skipped passes both happen.
+                .map(|_| ((random.next_u64() >> 33) as u32) & 0xFF00_0003)
                 .collect();
             let items: Vec<usize> = (0..n).rev().filter(|i| i % 7 != 3).collect();
             let mut expected = items.clone();

@@ -197,9 +197,7 @@ impl Cover {
                 .flatten()
             {
                 // The columns whose centres lie in the span, within the box's: from the first
-                // whole column at or after its start to the last at or before its end
-                // (truncation after the clamp, as `floor` and `ceil` are calls on x86-64's
-                // baseline instruction set).
+                // whole column at or after its start to the last at or before its end.
                 let (a, b) = (
                     (lo - self.origin.x) / self.cell - 0.5,
                     (hi - self.origin.x) / self.cell - 0.5,
@@ -208,8 +206,8 @@ impl Cover {
                     continue;
                 }
                 let a = a.max(x0 as f64);
-                let first = a as usize + usize::from(a > (a as usize) as f64);
-                let last = (b.min(x1 as f64) as usize).min(x1);
+                let first = floor_of_positive(a) + usize::from(a > floor_of_positive(a) as f64);
+                let last = floor_of_positive(b.min(x1 as f64)).min(x1);
                 for x in first..=last {
                     f(y * self.nx + x);
                 }
@@ -219,9 +217,7 @@ impl Cover {
 
     /// The cells a box spans, clamped to the grid: first and last column, first and last row.
     fn cell_range(&self, b: &Aabb) -> (usize, usize, usize, usize) {
-        // Truncation is the floor of what is not negative (and `floor` is a call on x86-64's
-        // baseline instruction set).
-        let at = |v: f64, o: f64, n: usize| (((v - o) / self.cell).max(0.0) as usize).min(n - 1);
+        let at = |v: f64, o: f64, n: usize| floor_of_positive((v - o) / self.cell).min(n - 1);
         (
             at(b.min.x, self.origin.x, self.nx),
             at(b.min.y, self.origin.y, self.ny),
@@ -243,11 +239,10 @@ impl Cover {
 
     /// The cell holding `p`, if the grid does (no sweep reaches a point outside it).
     fn cell_of(&self, p: Point) -> Option<usize> {
-        // Truncated where not negative: the floor (see `cell_range`).
         let x = (p.x - self.origin.x) / self.cell;
         let y = (p.y - self.origin.y) / self.cell;
-        (x >= 0.0 && y >= 0.0 && (x as usize) < self.nx && (y as usize) < self.ny)
-            .then(|| y as usize * self.nx + x as usize)
+        let (cx, cy) = (floor_of_positive(x), floor_of_positive(y));
+        (x >= 0.0 && y >= 0.0 && cx < self.nx && cy < self.ny).then(|| cy * self.nx + cx)
     }
 
     /// By how much one of the runs before `before` is proven to reach nearer to `p` than
@@ -317,6 +312,12 @@ impl Cover {
             .filter(move |run| distance_from_segment(&run.segment, p) <= eps + run.shrink)
             .flat_map(move |run| self.sweeps[run.first..run.end].iter().map(|s| s.segment))
     }
+}
+
+/// The floor of `v`, or 0 where it is negative (or not a number): a truncation, as `floor` is a
+/// call on x86-64's baseline instruction set, and this runs for every probe.
+fn floor_of_positive(v: f64) -> usize {
+    v.max(0.0) as usize
 }
 
 /// The runs that stand for `sweeps`: each sweep alone, but for sweeps shorter than
@@ -494,13 +495,8 @@ mod tests {
         assert!(sweeps.len() >= PARALLEL_RUNS);
         let r = 2.0;
         let cover = Cover::new(sweeps.clone(), r).unwrap();
-        let mut seed = 12345u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = crate::test_random::Lcg::new(12345);
+        let mut next = || random.unit();
         for _ in 0..4000 {
             let p = Point::new(next() * 210.0 - 5.0, next() * 115.0 - 5.0);
             let before = (next() * 1601.0) as usize;

@@ -193,6 +193,23 @@ fn walks(cover: &Cover) -> Vec<Walk> {
     out
 }
 
+/// The runs of two or more stations from 0 to `n` that are all `covered`, by first and last.
+fn covered_runs(n: usize, covered: impl Fn(usize) -> bool) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i <= n {
+        let mut j = i;
+        while covered(i) && j < n && covered(j + 1) {
+            j += 1;
+        }
+        if j > i {
+            out.push((i, j));
+        }
+        i = j + 1;
+    }
+    out
+}
+
 /// A run of a cover's sweeps, each starting where the one before ends, measured along.
 struct Walk {
     /// Its first sweep.
@@ -329,7 +346,7 @@ impl Walk {
     fn stretches(&self, cover: &Cover) -> Vec<(f64, f64)> {
         let r = cover.r;
         let length = self.length();
-        let coarse = ((length / (COARSE_STEP as f64 * PROBE_STEP_RADII * r)).ceil() as usize).max(1);
+        let coarse = self.coarse_stations(r);
         // The work stays linear in the moves: a walk of moves far longer than the tool (a
         // drawing in metres read as millimetres) is left as it is.
         if coarse > MOST_STATIONS_PER_MOVE * self.ends.len() + MOST_STATIONS {
@@ -422,24 +439,15 @@ impl Walk {
                 break;
             }
         }
-        let probed: Vec<bool> = known.iter().map(|k| *k == Some(true)).collect();
-        let mut out = Vec::new();
-        let mut i = 0;
-        while i <= n {
-            if !probed[i] {
-                i += 1;
-                continue;
-            }
-            let mut j = i;
-            while j < n && probed[j + 1] {
-                j += 1;
-            }
-            if j > i {
-                out.push((at(i), at(j)));
-            }
-            i = j + 1;
-        }
-        out
+        covered_runs(n, |i| known[i] == Some(true))
+            .into_iter()
+            .map(|(i, j)| (at(i), at(j)))
+            .collect()
+    }
+
+    /// How many coarse stations apart the walk's ends are, for a tool of radius `r`.
+    fn coarse_stations(&self, r: f64) -> usize {
+        ((self.length() / (COARSE_STEP as f64 * PROBE_STEP_RADII * r)).ceil() as usize).max(1)
     }
 
     /// The stretches of the walk proven to sweep nothing new, of those [`Walk::stretches`]
@@ -605,7 +613,7 @@ mod tests {
     fn probing_every_station(walk: &Walk, cover: &Cover) -> Vec<(f64, f64)> {
         let r = cover.r;
         let length = walk.length();
-        let coarse = ((length / (COARSE_STEP as f64 * PROBE_STEP_RADII * r)).ceil() as usize).max(1);
+        let coarse = walk.coarse_stations(r);
         let n = coarse * COARSE_STEP;
         let at = |i: usize| length * i as f64 / n as f64;
         let mut probes = Probes {
@@ -626,19 +634,10 @@ mod tests {
                 }
             }
         }
-        let mut out = Vec::new();
-        let mut i = 0;
-        while i <= n {
-            let mut j = i;
-            while covered[i] && j < n && covered[j + 1] {
-                j += 1;
-            }
-            if j > i && walk.gain(cover, at(i), at(j)) >= LEAST_GAIN_RADII * r {
-                out.push((at(i), at(j)));
-            }
-            i = j + 1;
-        }
-        out
+        (covered_runs(n, |i| covered[i]).into_iter())
+            .map(|(i, j)| (at(i), at(j)))
+            .filter(|&(a, b)| walk.gain(cover, a, b) >= LEAST_GAIN_RADII * r)
+            .collect()
     }
 
     #[test]
@@ -653,13 +652,8 @@ mod tests {
             path.line(Point3::new(x, y, -2.0), Feed::Cut);
             path.line(Point3::new(x, y + 2.4, -2.0), Feed::Cut);
         }
-        let mut seed = 7u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = crate::test_random::Lcg::new(7);
+        let mut next = || random.unit();
         for walk in 0..6 {
             path.rapid(Point3::new(next() * 60.0, next() * 28.0, -2.0));
             for _ in 0..40 {
