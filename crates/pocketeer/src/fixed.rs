@@ -115,7 +115,8 @@ const PAIRS: &[u8; 200] = b"\
 8081828384858687888990919293949596979899";
 
 /// Appends the decimal digits of `n`, padded with zeros to at least `width` digits (20 at
-/// most, the digits of `u64::MAX`). Two digits a division: a drawing's text is mostly digits.
+/// most, the digits of `u64::MAX`; zero is one digit whatever the width). Two digits a
+/// division: a drawing's text is mostly digits.
 pub(crate) fn push_digits(out: &mut Text, mut n: u64, width: usize) {
     // u64::MAX has 20 digits.
     let mut buf = [b'0'; 20];
@@ -133,7 +134,7 @@ pub(crate) fn push_digits(out: &mut Text, mut n: u64, width: usize) {
         at -= 1;
         buf[at] = b'0' + n as u8;
     }
-    let start = at.min(buf.len() - width.min(buf.len()));
+    let start = at.min(buf.len() - width.clamp(1, buf.len()));
     // ASCII digits: whole characters.
     out.0.extend_from_slice(&buf[start..]);
 }
