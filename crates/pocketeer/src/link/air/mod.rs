@@ -40,11 +40,14 @@ const WIDEST_COARSE: usize = 4;
 /// What is known of a coarse station of a walk. The coarse stations are probed widest apart
 /// first, then halfway between: one between two in stock is probed only where the walk between
 /// those two could gain enough (as a stretch must, and none between them gains more), and is
-/// sealed otherwise, as is one beside a sealed one (it lies between the same two).
+/// sealed otherwise, as is one beside a sealed one (it lies between the same two). A coarse
+/// station is probed with one probe first (the one most likely to lie in stock): where it lies
+/// in earlier sweeps, the station may be covered, and its other probes are asked only where a
+/// stretch through it could gain enough.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Station {
     Unknown,
-    Covered,
+    MaybeCovered,
     InStock,
     /// Not probed: no stretch through it can gain enough.
     Sealed,
@@ -66,6 +69,11 @@ const DIAGONAL: f64 = 0.999_999 * std::f64::consts::FRAC_1_SQRT_2;
 
 /// Probes of a station in all.
 const PROBES: usize = ACROSS.len() + AHEAD.len();
+
+/// The probes a coarse station is asked first (besides the one that lay in stock at the last
+/// station not covered), as most likely to lie in stock: at both edges of the sweep and
+/// straight ahead.
+const FIRST_PROBES: [usize; 3] = [0, 1, ACROSS.len()];
 
 /// The shortest stretch that is split to be proven in parts, in tool radii.
 const FINEST_STRETCH_RADII: f64 = 0.5;
@@ -234,6 +242,20 @@ impl Probes<'_> {
     /// True when the station `s` along the walk has all its probes (across the sweep and in
     /// front) in what the moves before its own swept.
     fn covered(&mut self, s: f64) -> bool {
+        self.covered_by(s, usize::MAX)
+    }
+
+    /// False when the station `s` is not covered, as [`Probes::covered`] tells, by one of the
+    /// probes most likely to lie in stock ([`FIRST_PROBES`], after the one that did at the
+    /// last station not covered); true where it may be.
+    fn maybe_covered(&mut self, s: f64) -> bool {
+        self.covered_by(s, FIRST_PROBES.len() + 1)
+    }
+
+    /// True when the first `count` of the station's probes (all of them, from [`PROBES`] on)
+    /// lie in what the moves before it swept: the one that lay in stock at the last station
+    /// not covered, then those of [`FIRST_PROBES`], then the rest.
+    fn covered_by(&mut self, s: f64, count: usize) -> bool {
         let (walk, cover) = (self.walk, self.cover);
         let r = cover.r;
         let (i, t) = walk.locate(s);
@@ -247,11 +269,15 @@ impl Probes<'_> {
             Some(j) => p + (tangent * AHEAD[j].0 + normal * AHEAD[j].1) * r,
         };
         // The probe that lay in stock at the last station first: along a loop that cuts, the
-        // same one does at the next.
+        // same one does at the next. (A probe asked twice answers the second time from where
+        // it was held.)
         let first = self.failed;
         let held = &mut self.held;
-        match (0..PROBES)
+        let rest = (1..PROBES)
             .map(|k| (first + k) % PROBES)
+            .filter(|k| !FIRST_PROBES.contains(k));
+        match (std::iter::once(first).chain(FIRST_PROBES).chain(rest))
+            .take(count)
             .find(|&k| !cover.reaches_held(probe(k), reach, before, &mut held[k]))
         {
             Some(k) => {
@@ -364,8 +390,8 @@ impl Walk {
         // The coarse stations, widest apart first and then those halfway between (see
         // [`Station`]).
         let mut coarse_at = vec![Station::Unknown; coarse + 1];
-        let probe_coarse = |c: usize, probes: &mut Probes| match probes.covered(at(c * COARSE_STEP)) {
-            true => Station::Covered,
+        let probe_coarse = |c: usize, probes: &mut Probes| match probes.maybe_covered(at(c * COARSE_STEP)) {
+            true => Station::MaybeCovered,
             false => Station::InStock,
         };
         for c in (0..coarse).step_by(WIDEST_COARSE).chain([coarse]) {
@@ -378,7 +404,7 @@ impl Walk {
                 // A stretch between two stations in stock holds only the stations between.
                 let span = || self.gain(cover, at(a * COARSE_STEP + 1), at(b * COARSE_STEP - 1));
                 coarse_at[c] = match (coarse_at[a], coarse_at[b]) {
-                    (Station::Covered, _) | (_, Station::Covered) => probe_coarse(c, &mut probes),
+                    (Station::MaybeCovered, _) | (_, Station::MaybeCovered) => probe_coarse(c, &mut probes),
                     (Station::InStock, Station::InStock) if span() >= least => probe_coarse(c, &mut probes),
                     _ => Station::Sealed,
                 };
@@ -386,13 +412,14 @@ impl Walk {
             half /= 2;
         }
         // Every station: covered, in stock, or not known. The fine ones are probed only beside
-        // a covered coarse one (else taken to be in stock).
+        // a coarse one that may be covered (else taken to be in stock).
+        let maybe = |c: usize| coarse_at[c] == Station::MaybeCovered;
         let mut known: Vec<Option<bool>> = (0..=n)
             .map(|i| {
                 let c = i / COARSE_STEP;
                 if i % COARSE_STEP == 0 {
-                    Some(coarse_at[c] == Station::Covered)
-                } else if coarse_at[c] == Station::Covered || coarse_at[c + 1] == Station::Covered {
+                    (!maybe(c)).then_some(false)
+                } else if maybe(c) || maybe(c + 1) {
                     None
                 } else {
                     Some(false)
@@ -606,6 +633,7 @@ impl Walk {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::distance_from_segment;
 
     /// The stretches that gain enough when every station is probed that the probes beside a
     /// covered coarse station reach (what [`Walk::stretches`] leaves out of that is proven to
@@ -640,10 +668,9 @@ mod tests {
             .collect()
     }
 
-    #[test]
-    fn the_stations_left_unprobed_hold_no_stretch_that_gains_enough() {
-        // A serpentine across a strip, then walks at random over it and beyond, turning
-        // sharply and gently, along lines and arcs.
+    /// A serpentine across a strip, then walks at random over it and beyond, turning sharply
+    /// and gently, along lines and arcs: the cover of its moves for a tool of radius 3.
+    fn serpentine_and_random_walks() -> Cover {
         let r = 3.0;
         let mut path = Toolpath::new(Point3::new(0.0, 0.0, -2.0));
         for k in 0..12 {
@@ -676,7 +703,13 @@ mod tests {
             })
             .collect();
         mark_smooth(&mut sweeps, r);
-        let cover = Cover::new(sweeps, r).unwrap();
+        Cover::new(sweeps, r).unwrap()
+    }
+
+    #[test]
+    fn the_stations_left_unprobed_hold_no_stretch_that_gains_enough() {
+        let cover = serpentine_and_random_walks();
+        let r = cover.r;
         let mut found = 0;
         for walk in walks(&cover) {
             let quick: Vec<(f64, f64)> = (walk.stretches(&cover).into_iter())
@@ -686,5 +719,47 @@ mod tests {
             found += quick.len();
         }
         assert!(found >= 20, "{found} stretches that gain enough");
+    }
+
+    #[test]
+    fn a_station_is_covered_when_every_probe_lies_in_an_earlier_sweep() {
+        // Each station of each walk against every probe measured from every sweep before it;
+        // asked first with the probes most likely in stock, then with all.
+        let cover = serpentine_and_random_walks();
+        let r = cover.r;
+        let (mut covered, mut stations) = (0, 0);
+        for walk in walks(&cover) {
+            let mut probes = Probes {
+                walk: &walk,
+                cover: &cover,
+                held: [Held::default(); PROBES],
+                failed: 0,
+            };
+            let n = 8 * walk.coarse_stations(r);
+            for i in 0..=n {
+                let s = walk.length() * i as f64 / n as f64;
+                let (k, t) = walk.locate(s);
+                let segment = &cover.sweeps[k].segment;
+                let (p, tangent) = (segment.point_at(t), segment.tangent_at(t));
+                let normal = tangent.perp();
+                let points = (ACROSS.iter().map(|&u| p + normal * (u * r)))
+                    .chain(AHEAD.iter().map(|&(a, u)| p + (tangent * a + normal * u) * r));
+                let earlier = &cover.sweeps[..cover.runs[cover.runs_before(k)].first];
+                let measured = points.collect::<Vec<_>>().iter().all(|&q| {
+                    earlier
+                        .iter()
+                        .any(|e| distance_from_segment(&e.segment, q) < r * (1.0 + 1e-9))
+                });
+                let maybe = probes.maybe_covered(s);
+                assert_eq!(probes.covered(s), measured, "walk at {} station {i}", walk.first);
+                assert!(maybe || !measured, "walk at {} station {i}", walk.first);
+                covered += usize::from(measured);
+                stations += 1;
+            }
+        }
+        assert!(
+            covered >= 50 && stations - covered >= 50,
+            "{covered} of {stations}"
+        );
     }
 }
