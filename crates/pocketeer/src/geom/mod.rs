@@ -18,6 +18,7 @@ pub(crate) mod rounding;
 mod segment;
 mod stitch;
 mod tolerance;
+mod trig;
 
 pub use aabb::Aabb;
 pub use arc::{normalize_angle, Arc};
@@ -41,3 +42,4 @@ pub use segment::Segment;
 pub use stitch::{stitch, Piece, Source};
 pub(crate) use stitch::{stitch_kept, PieceGraph};
 pub use tolerance::{offset_slack, Tolerance, DEFAULT_JOIN_TOLERANCE, JOIN_SLACK, NEAR_REVERSAL, TOUCH};
+pub use trig::sin_cos;

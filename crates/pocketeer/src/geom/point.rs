@@ -102,7 +102,7 @@ impl Vector {
 
     /// The unit vector at `angle` radians from the x axis.
     pub fn from_angle(angle: f64) -> Self {
-        let (s, c) = angle.sin_cos();
+        let (s, c) = super::sin_cos(angle);
         Vector::new(c, s)
     }
 

@@ -151,7 +151,7 @@ impl Segment {
 
     /// The segment turned by `angle` radians about the origin.
     pub fn rotated(&self, angle: f64) -> Segment {
-        let (s, c) = angle.sin_cos();
+        let (s, c) = super::sin_cos(angle);
         let rot = |p: Point| Point::new(c * p.x - s * p.y, s * p.x + c * p.y);
         match self {
             Segment::Line(l) => Segment::Line(Line::new(rot(l.start), rot(l.end))),
