@@ -126,92 +126,20 @@ pub fn sweeps_nothing(earlier: &Earlier, chain: &[Segment], scratch: &mut Scratc
 
 /// [`sweeps_nothing`] for a connected run with no piece along an earlier segment.
 fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch) -> Proof {
-    let cover = earlier.cover;
-    let r = cover.r;
-    let eps = 1e-9 * r;
-    let before = earlier.before;
+    let r = earlier.cover.r;
     let run_index = SegmentIndex::new(run);
-    let mut run_box = Aabb::EMPTY;
-    scratch.cells.clear();
-    for s in run {
-        let b = s.bbox();
-        run_box = run_box.union(&b);
-        cover.cells_of(&b.inflated(2.0 * r), &mut scratch.cells);
+    let run_box = (run.iter()).fold(Aabb::EMPTY, |b, s| b.union(&s.bbox()));
+    // The quick probes first: most runs that cut fail there, and need no more than whether an
+    // earlier sweep comes near at all.
+    if let Some(q) = probe_in_stock(earlier, run) {
+        return match near_runs(earlier, run, &run_index, scratch, 1).is_empty() {
+            true => Proof::Cuts,
+            false => Proof::CutsAt(q),
+        };
     }
-    scratch.cells.sort_unstable();
-    scratch.cells.dedup();
-    scratch.next_stamp(cover.runs.len());
-    let mut near: Vec<Near> = Vec::new();
-    for i in scratch.cells.iter().flat_map(|&c| cover.listed(c, before)) {
-        if scratch.seen[i] == scratch.stamp {
-            continue;
-        }
-        scratch.seen[i] = scratch.stamp;
-        let run = &cover.runs[i];
-        if run.bbox.distance_to_box(&run_box) <= 2.0 * r
-            && run_index.segment_within(&run.segment, 2.0 * r, eps)
-        {
-            near.push(Near {
-                segment: run.segment,
-                bbox: run.bbox,
-                radius: r - run.shrink,
-                circles: [
-                    !(i > 0 && cover.runs[i - 1].smooth_next),
-                    !(run.smooth_next && i + 1 < before),
-                ],
-            });
-        }
-    }
-    if let Some(e) = earlier
-        .extra
-        .filter(|e| run_index.segment_within(e, 2.0 * r, eps))
-    {
-        near.push(Near {
-            segment: e,
-            bbox: e.bbox(),
-            radius: r,
-            circles: [true, true],
-        });
-    }
+    let near = near_runs(earlier, run, &run_index, scratch, usize::MAX);
     if near.is_empty() {
         return Proof::Cuts;
-    }
-    // Quick probes: across the sweep every so often along the run, and its front and back;
-    // each place across with its own run that held it last.
-    let inside = r * (1.0 - 1e-6);
-    let mut held = [Held::default(); ACROSS.len()];
-    let mut probe_at = |p: Point, k: usize| !earlier.reaches(p, r * (1.0 + 1e-9), &mut held[k]);
-    let (first, last) = (run[0], run[run.len() - 1]);
-    let ends = [
-        first.start() - first.tangent_at(0.0) * inside,
-        last.end() + last.tangent_at(1.0) * inside,
-    ];
-    if let Some(&q) = ends.iter().find(|&&q| probe_at(q, 2)) {
-        return Proof::CutsAt(q);
-    }
-    let step = PROBE_STEP_RADII * r;
-    let mut to_next = 0.0;
-    for s in run {
-        let len = s.length();
-        let mut at = to_next;
-        while at <= len {
-            let t = if len > 0.0 { at / len } else { 0.0 };
-            let (p, normal) = (s.point_at(t), s.tangent_at(t).perp());
-            if let Some(q) = (ACROSS.iter().enumerate())
-                .map(|(k, &u)| (k, p + normal * (u * r)))
-                .find_map(|(k, q)| probe_at(q, k).then_some(q))
-            {
-                return Proof::CutsAt(q);
-            }
-            at += step;
-        }
-        to_next = at - len;
-    }
-    if let Some(q) = (ACROSS.iter().enumerate())
-        .map(|(k, &u)| (k, last.end() + last.tangent_at(1.0).perp() * (u * r)))
-        .find_map(|(k, q)| probe_at(q, k).then_some(q))
-    {
-        return Proof::CutsAt(q);
     }
     let finest = FINEST_EDGE_RADII * r;
     let reach_box = run_box.inflated(r);
@@ -259,6 +187,106 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
         }
     }
     Proof::Nothing
+}
+
+/// The earlier runs (and `extra`) whose paths come within twice the radius of `run`, at most
+/// `most` of them: all that a point of the run's sweep can lie in.
+fn near_runs(
+    earlier: &Earlier,
+    run: &[Segment],
+    run_index: &SegmentIndex,
+    scratch: &mut Scratch,
+    most: usize,
+) -> Vec<Near> {
+    let cover = earlier.cover;
+    let (r, before) = (cover.r, earlier.before);
+    let eps = 1e-9 * r;
+    let mut run_box = Aabb::EMPTY;
+    scratch.cells.clear();
+    for s in run {
+        let b = s.bbox();
+        run_box = run_box.union(&b);
+        cover.cells_of(&b.inflated(2.0 * r), &mut scratch.cells);
+    }
+    scratch.cells.sort_unstable();
+    scratch.cells.dedup();
+    scratch.next_stamp(cover.runs.len());
+    let mut near: Vec<Near> = Vec::new();
+    for i in scratch.cells.iter().flat_map(|&c| cover.listed(c, before)) {
+        if near.len() >= most {
+            return near;
+        }
+        if scratch.seen[i] == scratch.stamp {
+            continue;
+        }
+        scratch.seen[i] = scratch.stamp;
+        let run = &cover.runs[i];
+        if run.bbox.distance_to_box(&run_box) <= 2.0 * r
+            && run_index.segment_within(&run.segment, 2.0 * r, eps)
+        {
+            near.push(Near {
+                segment: run.segment,
+                bbox: run.bbox,
+                radius: r - run.shrink,
+                circles: [
+                    !(i > 0 && cover.runs[i - 1].smooth_next),
+                    !(run.smooth_next && i + 1 < before),
+                ],
+            });
+        }
+    }
+    if let Some(e) = earlier
+        .extra
+        .filter(|e| near.len() < most && run_index.segment_within(e, 2.0 * r, eps))
+    {
+        near.push(Near {
+            segment: e,
+            bbox: e.bbox(),
+            radius: r,
+            circles: [true, true],
+        });
+    }
+    near
+}
+
+/// The first of the quick probes of `run` that no earlier sweep reaches, if one is: just
+/// inside the tool's circle behind its start and in front of its end, then across its sweep
+/// every so often along it and at its end, each place across with its own run that held it
+/// last.
+fn probe_in_stock(earlier: &Earlier, run: &[Segment]) -> Option<Point> {
+    let r = earlier.cover.r;
+    let inside = r * (1.0 - 1e-6);
+    let mut held = [Held::default(); ACROSS.len()];
+    let mut probe_at = |p: Point, k: usize| !earlier.reaches(p, r * (1.0 + 1e-9), &mut held[k]);
+    let (first, last) = (run[0], run[run.len() - 1]);
+    let ends = [
+        first.start() - first.tangent_at(0.0) * inside,
+        last.end() + last.tangent_at(1.0) * inside,
+    ];
+    if let Some(&q) = ends.iter().find(|&&q| probe_at(q, 2)) {
+        return Some(q);
+    }
+    let step = PROBE_STEP_RADII * r;
+    let mut to_next = 0.0;
+    for s in run {
+        let len = s.length();
+        let mut at = to_next;
+        while at <= len {
+            let t = if len > 0.0 { at / len } else { 0.0 };
+            let (p, normal) = (s.point_at(t), s.tangent_at(t).perp());
+            if let Some(q) = (ACROSS.iter().enumerate())
+                .map(|(k, &u)| (k, p + normal * (u * r)))
+                .find_map(|(k, q)| probe_at(q, k).then_some(q))
+            {
+                return Some(q);
+            }
+            at += step;
+        }
+        to_next = at - len;
+    }
+    (ACROSS.iter().enumerate())
+        .map(|(k, &u)| (k, last.end() + last.tangent_at(1.0).perp() * (u * r)))
+        .find_map(|(k, q)| probe_at(q, k).then_some(q))
 }
 
 /// True when `piece` lies on the union of the earlier segments that run along its line or
