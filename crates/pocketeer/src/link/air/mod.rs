@@ -16,7 +16,7 @@ mod proof;
 mod rows;
 
 use super::walk::emit;
-use crate::geom::{Line, Point, Segment};
+use crate::geom::{Line, Point, Segment, Vector};
 use crate::toolpath::{Feed, Move, Point3, Toolpath};
 use cover::{Cover, Held, Sweep};
 use proof::{first_reach, sweeps_nothing, Earlier, Proof, Scratch, ACROSS, PROBE_STEP_RADII};
@@ -41,9 +41,9 @@ const WIDEST_COARSE: usize = 4;
 /// first, then halfway between: one between two in stock is probed only where the walk between
 /// those two could gain enough (as a stretch must, and none between them gains more), and is
 /// sealed otherwise, as is one beside a sealed one (it lies between the same two). A coarse
-/// station is probed with one probe first (the one most likely to lie in stock): where it lies
-/// in earlier sweeps, the station may be covered, and its other probes are asked only where a
-/// stretch through it could gain enough.
+/// station is asked first only the probes most likely to lie in stock (see
+/// [`Probes::maybe_covered`]): where they lie in earlier sweeps, the station may be covered,
+/// and its other probes are asked only where a stretch through it could gain enough.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Station {
     Unknown,
@@ -238,7 +238,17 @@ struct Probes<'w> {
     failed: usize,
 }
 
-impl Probes<'_> {
+impl<'w> Probes<'w> {
+    /// The probes of `walk`'s stations against `cover`, nothing asked yet.
+    fn new(walk: &'w Walk, cover: &'w Cover) -> Probes<'w> {
+        Probes {
+            walk,
+            cover,
+            held: [Held::default(); PROBES],
+            failed: 0,
+        }
+    }
+
     /// True when the station `s` along the walk has all its probes (across the sweep and in
     /// front) in what the moves before its own swept.
     fn covered(&mut self, s: f64) -> bool {
@@ -263,11 +273,7 @@ impl Probes<'_> {
         let (p, tangent) = (segment.point_at(t), segment.tangent_at(t));
         let reach = r * (1.0 + 1e-9);
         let before = cover.runs_before(i);
-        let normal = tangent.perp();
-        let probe = |k: usize| match k.checked_sub(ACROSS.len()) {
-            None => p + normal * (ACROSS[k] * r),
-            Some(j) => p + (tangent * AHEAD[j].0 + normal * AHEAD[j].1) * r,
-        };
+        let probe = |k: usize| probe_point(p, tangent, k, r);
         // The probe that lay in stock at the last station first: along a loop that cuts, the
         // same one does at the next. (A probe asked twice answers the second time from where
         // it was held.)
@@ -286,6 +292,16 @@ impl Probes<'_> {
             }
             None => true,
         }
+    }
+}
+
+/// Where the station at `p`, the tool going along `tangent` (of length 1), has its probe `k`
+/// (of [`PROBES`]: those across its sweep, then those in front) for a tool of radius `r`.
+fn probe_point(p: Point, tangent: Vector, k: usize, r: f64) -> Point {
+    let normal = tangent.perp();
+    match k.checked_sub(ACROSS.len()) {
+        None => p + normal * (ACROSS[k] * r),
+        Some(j) => p + (tangent * AHEAD[j].0 + normal * AHEAD[j].1) * r,
     }
 }
 
@@ -380,12 +396,7 @@ impl Walk {
         }
         let n = coarse * COARSE_STEP;
         let at = |i: usize| length * i as f64 / n as f64;
-        let mut probes = Probes {
-            walk: self,
-            cover,
-            held: [Held::default(); PROBES],
-            failed: 0,
-        };
+        let mut probes = Probes::new(self, cover);
         let least = LEAST_GAIN_RADII * r;
         // The coarse stations, widest apart first and then those halfway between (see
         // [`Station`]).
@@ -644,12 +655,7 @@ mod tests {
         let coarse = walk.coarse_stations(r);
         let n = coarse * COARSE_STEP;
         let at = |i: usize| length * i as f64 / n as f64;
-        let mut probes = Probes {
-            walk,
-            cover,
-            held: [Held::default(); PROBES],
-            failed: 0,
-        };
+        let mut probes = Probes::new(walk, cover);
         let mut covered = vec![false; n + 1];
         for c in 0..=coarse {
             covered[c * COARSE_STEP] = probes.covered(at(c * COARSE_STEP));
@@ -729,23 +735,15 @@ mod tests {
         let r = cover.r;
         let (mut covered, mut stations) = (0, 0);
         for walk in walks(&cover) {
-            let mut probes = Probes {
-                walk: &walk,
-                cover: &cover,
-                held: [Held::default(); PROBES],
-                failed: 0,
-            };
+            let mut probes = Probes::new(&walk, &cover);
             let n = 8 * walk.coarse_stations(r);
             for i in 0..=n {
                 let s = walk.length() * i as f64 / n as f64;
                 let (k, t) = walk.locate(s);
                 let segment = &cover.sweeps[k].segment;
                 let (p, tangent) = (segment.point_at(t), segment.tangent_at(t));
-                let normal = tangent.perp();
-                let points = (ACROSS.iter().map(|&u| p + normal * (u * r)))
-                    .chain(AHEAD.iter().map(|&(a, u)| p + (tangent * a + normal * u) * r));
                 let earlier = &cover.sweeps[..cover.runs[cover.runs_before(k)].first];
-                let measured = points.collect::<Vec<_>>().iter().all(|&q| {
+                let measured = (0..PROBES).map(|j| probe_point(p, tangent, j, r)).all(|q| {
                     earlier
                         .iter()
                         .any(|e| distance_from_segment(&e.segment, q) < r * (1.0 + 1e-9))

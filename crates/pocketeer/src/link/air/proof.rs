@@ -132,12 +132,12 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
     // The quick probes first: most runs that cut fail there, and need no more than whether an
     // earlier sweep comes near at all.
     if let Some(q) = probe_in_stock(earlier, run) {
-        return match near_runs(earlier, run, &run_index, scratch, 1).is_empty() {
+        return match near_runs(earlier, run, &run_index, &run_box, scratch, 1).is_empty() {
             true => Proof::Cuts,
             false => Proof::CutsAt(q),
         };
     }
-    let near = near_runs(earlier, run, &run_index, scratch, usize::MAX);
+    let near = near_runs(earlier, run, &run_index, &run_box, scratch, usize::MAX);
     if near.is_empty() {
         return Proof::Cuts;
     }
@@ -189,24 +189,23 @@ fn run_sweeps_nothing(earlier: &Earlier, run: &[Segment], scratch: &mut Scratch)
     Proof::Nothing
 }
 
-/// The earlier runs (and `extra`) whose paths come within twice the radius of `run`, at most
-/// `most` of them: all that a point of the run's sweep can lie in.
+/// The earlier runs (and `extra`) whose paths come within twice the radius of `run` (indexed
+/// in `run_index`, its box `run_box`), at most `most` of them: all that a point of the run's
+/// sweep can lie in.
 fn near_runs(
     earlier: &Earlier,
     run: &[Segment],
     run_index: &SegmentIndex,
+    run_box: &Aabb,
     scratch: &mut Scratch,
     most: usize,
 ) -> Vec<Near> {
     let cover = earlier.cover;
     let (r, before) = (cover.r, earlier.before);
     let eps = 1e-9 * r;
-    let mut run_box = Aabb::EMPTY;
     scratch.cells.clear();
     for s in run {
-        let b = s.bbox();
-        run_box = run_box.union(&b);
-        cover.cells_of(&b.inflated(2.0 * r), &mut scratch.cells);
+        cover.cells_of(&s.bbox().inflated(2.0 * r), &mut scratch.cells);
     }
     scratch.cells.sort_unstable();
     scratch.cells.dedup();
@@ -221,7 +220,7 @@ fn near_runs(
         }
         scratch.seen[i] = scratch.stamp;
         let run = &cover.runs[i];
-        if run.bbox.distance_to_box(&run_box) <= 2.0 * r
+        if run.bbox.distance_to_box(run_box) <= 2.0 * r
             && run_index.segment_within(&run.segment, 2.0 * r, eps)
         {
             near.push(Near {
@@ -263,6 +262,8 @@ fn probe_in_stock(earlier: &Earlier, run: &[Segment]) -> Option<Point> {
         first.start() - first.tangent_at(0.0) * inside,
         last.end() + last.tangent_at(1.0) * inside,
     ];
+    // Behind the start and in front of the end lie on the centre line: held as the probe
+    // across at 0 (`ACROSS[2]`) is.
     if let Some(&q) = ends.iter().find(|&&q| probe_at(q, 2)) {
         return Some(q);
     }
