@@ -3,8 +3,8 @@
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
-use pocketeer::geom::Pocket;
 use pocketeer::geom::{distance_from_segment, Arc, Contour, Line, Point, Segment, Tolerance, Vector};
+use pocketeer::geom::{Pocket, PreparedPocket};
 use pocketeer::import::self_crossing::make_simple;
 use pocketeer::offset::{loops_meet, offset_pocket, verify_offset};
 use proptest::prelude::*;
@@ -165,6 +165,32 @@ proptest! {
             islands: p.islands.iter().map(|i| Contour::new(i.segments.iter().map(|s| s.translated(far)).collect())).collect(),
         };
         same_loops(&base, &offset_pocket(&moved, d, &tol).unwrap(), far, within)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Just short of and just beyond the deepest point of the pocket, where a deeper level is
+    /// proven empty before it is split (see `offset/clip.rs`), the offset from the sources of
+    /// a smaller one is the offset alone: as many loops, the same area; none beyond.
+    #[test]
+    fn the_levels_round_the_deepest_point_are_the_offsets_alone(
+        p in pocket(),
+        at in 0.2..0.9f64,
+        side in prop::bool::ANY,
+        off in prop_oneof![Just(1e-4), Just(1e-2)],
+    ) {
+        let tol = Tolerance::default();
+        let region = PreparedPocket::new(&p);
+        let deepest = region.largest_inscribed_radius(&tol).unwrap();
+        let d = deepest * if side { 1.0 + off } else { 1.0 - off };
+        let (_, sources) = region.offset_with_sources(at * deepest, &tol, None).unwrap();
+        let (fast, _) = region.offset_with_sources(d, &tol, Some(&sources)).unwrap();
+        let alone = region.offset(d, &tol).unwrap();
+        prop_assert_eq!(fast.len(), alone.len());
+        prop_assert_eq!(fast.is_empty(), side);
+        prop_assert!((area(&fast) - area(&alone)).abs() <= 1e-9 * (1.0 + area(&alone).abs()));
     }
 }
 

@@ -67,6 +67,59 @@ pub fn clip_invalid(
     Some(out)
 }
 
+/// True when every point of every one of `pieces` is proven nearer than `r` to the profile
+/// by halving each piece (see [`clip_invalid`]) at most [`EMPTY_DEPTH`] times, within `work`
+/// distances measured in all; stops at the first span not proven so. Then no piece of the
+/// offset at a distance d with d − slack ≥ `r` is valid: a run is judged by the middle of one
+/// of its pieces, a point of a raw piece, and goes when that is nearer than d − slack.
+///
+/// The proof of an empty level: beyond the deepest point of a region, where every raw piece
+/// crosses many others, splitting and judging them costs more than any level with loops.
+///
+/// The pieces are taken a stride apart, then the ones after those, and so on: a level with
+/// loops, asked in vain, stops sooner where its few valid pieces run together.
+pub fn all_invalid(pieces: &[Piece], walls: &SegmentIndex, r: f64, mut work: u64) -> bool {
+    let stride = (pieces.len() as f64).sqrt() as usize + 1;
+    (0..stride)
+        .flat_map(|first| pieces.iter().skip(first).step_by(stride))
+        .all(|p| {
+            let mut hint = None;
+            invalid_span(p, walls, r, (0.0, 1.0), EMPTY_DEPTH, (&mut work, &mut hint))
+        })
+}
+
+/// How many times [`all_invalid`] halves a piece at most: a span of a four-thousandth of the
+/// piece's length is proven when its middle is that much nearer than `r`.
+const EMPTY_DEPTH: u32 = 12;
+
+/// True when the span `(lo, hi)` of `p` is proven nearer than `r` to the profile everywhere,
+/// halving it at most `depth` times while `work` lasts; `hint`: the wall that answered last.
+fn invalid_span(
+    p: &Piece,
+    walls: &SegmentIndex,
+    r: f64,
+    (lo, hi): (f64, f64),
+    depth: u32,
+    (work, hint): (&mut u64, &mut Option<usize>),
+) -> bool {
+    let half = 0.5 * (hi - lo) * p.segment.length();
+    let mid = 0.5 * (lo + hi);
+    // Room for the rounding of the distance measured: a millionth of a micrometre for 1 m.
+    let within = r - half - 1e-12 * r.abs().max(1.0);
+    let mut measured = 0;
+    let proven =
+        within > 0.0 && walls.any_within_hinted(p.segment.point_at(mid), within, &mut measured, hint);
+    *work = work.saturating_sub(measured);
+    if proven {
+        return true;
+    }
+    if depth == 0 || *work == 0 {
+        return false;
+    }
+    invalid_span(p, walls, r, (lo, mid), depth - 1, (&mut *work, &mut *hint))
+        && invalid_span(p, walls, r, (mid, hi), depth - 1, (work, hint))
+}
+
 /// Appends to `out`, in order, the spans of `(lo, hi)` on `p` not proven nearer than `r` to
 /// the profile.
 fn keep_spans(
@@ -98,7 +151,56 @@ fn keep_spans(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Contour, Line, Point, Segment, Source};
+    use crate::geom::{Arc, Contour, Line, Point, PreparedPocket, Segment, Source, Tolerance};
+
+    #[test]
+    fn a_level_beyond_the_deepest_point_is_proven_empty_and_one_short_of_it_is_not() {
+        // Holes of radius 4 at a 20 mm pitch, 3 x 3 in a 60 mm square: the deepest points lie
+        // between four holes, 10√2 − 4 = 10.142 mm from them.
+        let p = Point::new;
+        let mut loops = vec![Contour::polygon(&[
+            p(0.0, 0.0),
+            p(60.0, 0.0),
+            p(60.0, 60.0),
+            p(0.0, 60.0),
+        ])];
+        for k in 0..9 {
+            let c = p(20.0 * (k % 3) as f64 + 10.0, 20.0 * (k / 3) as f64 + 10.0);
+            loops.push(Contour::new(vec![Segment::Arc(Arc::new(
+                c,
+                4.0,
+                0.0,
+                -std::f64::consts::TAU,
+            ))]));
+        }
+        let region = PreparedPocket::from_loops(loops);
+        let tol = Tolerance::default();
+        let deepest = 200f64.sqrt() - 4.0;
+        let raw = |d: f64| {
+            let (mut pieces, mut next) = (Vec::new(), 0);
+            for (k, c) in region.contours().iter().enumerate() {
+                let (more, n) = super::super::raw::raw_offset(c, d, &tol, next, 10 * k, &|_| true);
+                pieces.extend(more);
+                next = n;
+            }
+            pieces
+        };
+        for (d, empty) in [(deepest + 0.01, true), (deepest - 0.01, false), (5.0, false)] {
+            let pieces = raw(d);
+            let slack = super::super::prune::slack(d, &tol);
+            let proven = all_invalid(&pieces, region.walls(), d - slack, 64 * pieces.len() as u64);
+            assert_eq!(proven, empty, "at {d}");
+            assert_eq!(
+                region.offset(d, &tol).unwrap().is_empty(),
+                empty,
+                "the offset at {d}"
+            );
+        }
+        // Too little work to prove it: not proven.
+        let pieces = raw(deepest + 0.01);
+        let slack = super::super::prune::slack(deepest + 0.01, &tol);
+        assert!(!all_invalid(&pieces, region.walls(), deepest + 0.01 - slack, 100));
+    }
 
     #[test]
     fn the_part_near_the_profile_goes_and_the_rest_keeps_its_ends() {

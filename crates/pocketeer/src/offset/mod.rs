@@ -65,6 +65,11 @@ pub const MAX_CROSSINGS: usize = 2_000_000;
 /// pieces before splitting them (the 100 000-element benchmark profiles make under one).
 const QUADRATIC_CROSSINGS: usize = 4;
 
+/// Distances measured for each raw piece, at most, in proving a level empty before
+/// splitting it (see `clip::all_invalid`): a level with loops stops at its first valid
+/// piece, usually the first.
+const EMPTY_PROOF_WORK: u64 = 64;
+
 /// The most segments the levels of one pocket may hold together (about a gigabyte, and a
 /// program of tens of millions of moves): a drawing of 100 000 elements cleared with a
 /// stepover of a tenth of a millimetre would need billions.
@@ -320,6 +325,18 @@ fn erode<'w>(
         next_node = next;
         base += c.segments.len();
     }
+    // A level beyond the deepest point of the region: halving each raw piece shows it too
+    // near the walls everywhere. Asked only of a deeper level (the walls are indexed by then;
+    // the first level of a large region indexes them beside its raw offset and split).
+    let slack = prune::slack(d, tol);
+    if smaller.is_some() && clip::all_invalid(&raw, walls(), d - slack, EMPTY_PROOF_WORK * raw.len() as u64) {
+        return Ok((
+            Vec::new(),
+            Sources {
+                used: Some(vec![false; 2 * elements]),
+            },
+        ));
+    }
     let mut nodes = Nodes::new(next_node);
     let budget = (MAX_BOX_TESTS, MAX_CROSSINGS);
     // A raw offset crossing itself more than a few times per piece is going quadratic (sharp
@@ -344,7 +361,7 @@ fn erode<'w>(
                 ),
                 near: pieces[o.at].segment.start(),
             };
-            let clipped = clip::clip_invalid(&raw, walls(), d, prune::slack(d, tol), &mut nodes)
+            let clipped = clip::clip_invalid(&raw, walls(), d, slack, &mut nodes)
                 .ok_or_else(|| too_complex(&raw, first))?;
             split(&clipped, &mut nodes, tol, budget).map_err(|o| too_complex(&clipped, o))?
         }
