@@ -3,7 +3,9 @@
 
 use crate::geom::Source;
 use crate::geom::NEAR_REVERSAL;
-use crate::geom::{intersect, Arc, Contour, Intersection, Line, Piece, Segment, Tolerance};
+use crate::geom::{intersect, Arc, Contour, Intersection, Line, Piece, Point, Segment, Tolerance};
+use smallvec::SmallVec;
+use std::collections::HashMap;
 use std::f64::consts::PI;
 
 /// The raw offset of a closed contour by `d` to its left (the side the material to remove is
@@ -29,51 +31,97 @@ pub fn raw_offset(
     contour: &Contour,
     d: f64,
     tol: &Tolerance,
-    mut next_node: usize,
+    next_node: usize,
     base: usize,
     wanted: &dyn Fn(Source) -> bool,
 ) -> (Vec<Piece>, usize) {
     let segs = &contour.segments;
-    // The moved elements that did not collapse, with the index of their original.
-    let moved: Vec<(usize, Segment)> = segs
-        .iter()
-        .enumerate()
-        .filter_map(|(k, s)| offset_segment(s, d, tol).map(|m| (k, m)))
-        .collect();
-    let n = moved.len();
+    // A deeper level of a finely drawn profile wants a few of its elements: only those and
+    // the joints their trims depend on are worked out, not the whole ring.
+    let asked =
+        |k: usize| wanted(Source::Element((base + k) as u32)) || wanted(Source::Joint((base + k) as u32));
+    let asked_for = (0..segs.len()).filter(|&k| asked(k)).count();
+    let sparse = asked_for * SPARSE_SHARE < segs.len();
+    // The elements that do not collapse: moved element i is element keep[i] moved.
+    let (keep, moved): (Vec<usize>, Vec<Segment>) = if sparse {
+        (
+            (0..segs.len()).filter(|&k| moves(&segs[k], tol)).collect(),
+            Vec::new(),
+        )
+    } else {
+        (segs.iter().enumerate())
+            .filter_map(|(k, s)| offset_segment(s, d, tol).map(|m| (k, m)))
+            .unzip()
+    };
+    let n = keep.len();
     if n == 0 {
         return (Vec::new(), next_node);
     }
-    // Consecutive moved elements k and j follow each other in the contour, across the points
-    // dropped between them if any; a joint needs two of them (a lone element among points
-    // closes on itself, j = k, unless it is the whole contour, a circle).
-    let adjacent = |k: usize, j: usize| k != j || segs.len() == 1;
-    let Trims { from, to, joint } = trims(segs, &moved, d, tol, &adjacent);
+    // Which of each moved element's pieces are wanted: its own, and those of the joint at
+    // its end (see the function's documentation).
+    let element_wanted = |i: usize| wanted(Source::Element((base + keep[i]) as u32));
+    let wants = |i: usize| {
+        let own = element_wanted(i);
+        let next = if i + 1 == n { 0 } else { i + 1 };
+        (
+            own,
+            own || element_wanted(next) || wanted(Source::Joint((base + keep[i]) as u32)),
+        )
+    };
+    let needed = (0..n).map(|i| (i, wants(i))).filter(|(_, (_, joint))| *joint);
+    let ring = Ring {
+        segs,
+        keep: &keep,
+        d,
+        tol,
+    };
+    if sparse {
+        let mut sparse = Sparse {
+            ring,
+            moved: HashMap::new(),
+            settled: HashMap::new(),
+        };
+        // An element asked for brings its joints and the joint before it.
+        pieces_of(ring, &mut sparse, needed, (next_node, 3 * asked_for), base)
+    } else {
+        let mut whole = Whole::new(ring, moved);
+        pieces_of(ring, &mut whole, needed, (next_node, 2 * n), base)
+    }
+}
+
+/// A ring is worked out only round the elements wanted when fewer than one in this many are.
+const SPARSE_SHARE: usize = 8;
+
+/// The raw pieces of the `needed` moved elements of `ring` (with whether the element's own
+/// pieces and its joint's are wanted), trimmed as `trimmed` says, their nodes numbered from
+/// `next_node` (about `expected` of them); and the next free node.
+fn pieces_of(
+    ring: Ring<'_>,
+    trimmed: &mut impl Trimmed,
+    needed: impl Iterator<Item = (usize, (bool, bool))>,
+    (mut next_node, expected): (usize, usize),
+    base: usize,
+) -> (Vec<Piece>, usize) {
+    let (segs, keep, d) = (ring.segs, ring.keep, ring.d);
+    let n = keep.len();
     let first = next_node;
     next_node += n;
     // Node at the start of moved element i is first + i; its end is the next one's start, with
     // a joining piece between them where they do not meet.
-    let mut pieces = Vec::with_capacity(2 * n);
-    let element_wanted = |i: usize| wanted(Source::Element((base + moved[i].0) as u32));
-    for i in 0..n {
-        let (k, a) = moved[i];
-        let (j, b) = moved[(i + 1) % n];
-        let (want_element, want_joint) = {
-            let own = element_wanted(i);
-            let joint = own || element_wanted((i + 1) % n) || wanted(Source::Joint((base + k) as u32));
-            (own, joint)
-        };
-        if !want_element && !want_joint {
-            continue;
-        }
-        let a = if from[i] > 0.0 || to[i] < 1.0 {
-            a.subsegment(from[i], to[i])
+    let mut pieces = Vec::with_capacity(expected);
+    for (i, (want_element, want_joint)) in needed {
+        let next = if i + 1 == n { 0 } else { i + 1 };
+        let (k, j) = (keep[i], keep[next]);
+        let (a, b) = (trimmed.moved(i), trimmed.moved(next));
+        let (joint, from, to) = (trimmed.joint(i), trimmed.from(i), trimmed.to(i));
+        let a = if from > 0.0 || to < 1.0 {
+            a.subsegment(from, to)
         } else {
             a
         };
         let start = first + i;
-        let next_start = first + (i + 1) % n;
-        let meets = joint[i] == Joint::Meet;
+        let next_start = first + next;
+        let meets = joint == Joint::Meet;
         let end = if meets {
             next_start
         } else {
@@ -91,20 +139,20 @@ pub fn raw_offset(
         if meets || !want_joint {
             continue;
         }
-        let b_start = if from[(i + 1) % n] > 0.0 {
-            b.point_at(from[(i + 1) % n])
+        let next_from = trimmed.from(next);
+        let b_start = if next_from > 0.0 {
+            b.point_at(next_from)
         } else {
             b.start()
         };
         let source = Source::Joint((base + k) as u32);
         let ends = (a.end(), b_start, end, next_start);
-        let adjacent = adjacent(k, j);
         next_node = joining(
             &segs[k],
             &segs[j],
             d,
-            adjacent,
-            joint[i],
+            adjacent(segs, k, j),
+            joint,
             ends,
             source,
             next_node,
@@ -114,65 +162,223 @@ pub fn raw_offset(
     (pieces, next_node)
 }
 
-/// How each moved element and the next come together, and how far each is trimmed.
-struct Trims {
-    /// Where moved element i starts, as a parameter of it (0: not trimmed).
-    from: Vec<f64>,
-    /// Where it ends (1: not trimmed).
-    to: Vec<f64>,
-    /// How moved element i and the next one come together.
-    joint: Vec<Joint>,
+/// Consecutive moved elements k and j follow each other in the contour, across the points
+/// dropped between them if any; a joint needs two of them (a lone element among points
+/// closes on itself, j = k, unless it is the whole contour, a circle).
+fn adjacent(segs: &[Segment], k: usize, j: usize) -> bool {
+    k != j || segs.len() == 1
 }
 
-/// Works out the [`Trims`] of the `moved` elements of `segs` (each with the index of its
-/// original) at distance `d`; `adjacent(k, j)` tells whether originals k and j share a joint.
-fn trims(
-    segs: &[Segment],
-    moved: &[(usize, Segment)],
+/// One contour's elements and distance.
+#[derive(Clone, Copy)]
+struct Ring<'a> {
+    segs: &'a [Segment],
+    /// The elements that do not collapse, in order: moved element i is element keep[i] moved.
+    keep: &'a [usize],
     d: f64,
-    tol: &Tolerance,
-    adjacent: &dyn Fn(usize, usize) -> bool,
-) -> Trims {
-    // Where the moved elements overlap at a turn to the left, trim both to their crossing
-    // nearest the joint (so they meet in one node), as long as each keeps some length.
-    let n = moved.len();
-    let mut from = vec![0.0; n];
-    let mut to = vec![1.0; n];
-    // How moved element i and the next one come together.
-    let mut joint = vec![Joint::Apart; n];
-    for i in 0..n {
-        let (k, a) = moved[i];
-        let (j, b) = moved[(i + 1) % n];
-        if a.end().distance(b.start()) <= tol.rounding() {
-            joint[i] = Joint::Meet;
-            continue;
+    tol: &'a Tolerance,
+}
+
+impl Ring<'_> {
+    /// What moved elements i (`a`) and i + 1 (`b`) show at their joint before the trims
+    /// beside it are known.
+    fn step(&self, i: usize, a: &Segment, b: &Segment) -> Step {
+        let n = self.keep.len();
+        let (k, j) = (self.keep[i], self.keep[if i + 1 == n { 0 } else { i + 1 }]);
+        if a.end().distance(b.start()) <= self.tol.rounding() {
+            return Step::Fixed(Joint::Meet);
         }
-        if !adjacent(k, j) {
-            continue;
+        if !adjacent(self.segs, k, j) {
+            return Step::Fixed(Joint::Apart);
         }
-        if right_turn(&segs[k], &segs[j], d) {
-            joint[i] = Joint::RightTurn;
-            continue;
+        if right_turn(&self.segs[k], &self.segs[j], self.d) {
+            return Step::Fixed(Joint::RightTurn);
         }
         if n < 2 {
-            continue;
+            return Step::Fixed(Joint::Apart);
         }
-        let corner = segs[k].end();
-        let crossing = intersect(&a, &b, tol.eps)
+        let found = intersect(a, b, self.tol.eps)
             .iter()
             .filter_map(|h| match h {
                 Intersection::Point { point, ta, tb } => Some((point, ta, tb)),
                 Intersection::Overlap { .. } => None,
             })
-            .filter(|&(_, ta, tb)| ta > from[i] && tb < to[(i + 1) % n])
-            .min_by(|x, y| x.0.distance(corner).total_cmp(&y.0.distance(corner)));
-        if let Some((_, ta, tb)) = crossing {
-            to[i] = ta;
-            from[(i + 1) % n] = tb;
-            joint[i] = Joint::Meet;
+            .collect();
+        Step::Cross(self.segs[k].end(), found)
+    }
+}
+
+/// What two consecutive moved elements show at their joint before the trims beside it are
+/// known: how they meet, or where they cross (points and parameters on each) round the
+/// original joint.
+enum Step {
+    Fixed(Joint),
+    Cross(Point, SmallVec<[(Point, f64, f64); 2]>),
+}
+
+impl Step {
+    /// True when the joint depends on where the first element was trimmed at its start.
+    fn crosses(&self) -> bool {
+        matches!(self, Step::Cross(_, found) if !found.is_empty())
+    }
+
+    /// How the elements come together, given where the first starts (`from`, a parameter of
+    /// it) and where the second ends (`next_to`): where the moved elements overlap at a turn to
+    /// the left, both are trimmed to their crossing nearest the joint (so they meet in one
+    /// node), as long as each keeps some length.
+    fn settle(self, from: f64, next_to: f64) -> Settled {
+        match self {
+            Step::Fixed(joint) => (joint, None),
+            Step::Cross(corner, found) => found
+                .into_iter()
+                .filter(|&(_, ta, tb)| ta > from && tb < next_to)
+                .min_by(|x, y| x.0.distance(corner).total_cmp(&y.0.distance(corner)))
+                .map_or((Joint::Apart, None), |(_, ta, tb)| (Joint::Meet, Some((ta, tb)))),
         }
     }
-    Trims { from, to, joint }
+}
+
+/// How moved element i and the next come together once trimmed: the joint, and where they
+/// cross (the parameters on each) when trimmed to their crossing.
+type Settled = (Joint, Option<(f64, f64)>);
+
+/// The moved elements of a ring and how each is trimmed.
+///
+/// Each joint depends on where the element before it was trimmed at its start (the crossing
+/// must lie beyond it), so on the joint before; the last on the first, whose element is
+/// untrimmed at its start when its joint is worked out. The joints are as when worked out in
+/// ring order from the first.
+trait Trimmed {
+    /// Moved element i.
+    fn moved(&mut self, i: usize) -> Segment;
+    /// How moved element i and the next come together.
+    fn joint(&mut self, i: usize) -> Joint;
+    /// Where moved element i starts, as a parameter of it (0: not trimmed).
+    fn from(&mut self, i: usize) -> f64;
+    /// Where moved element i ends (1: not trimmed).
+    fn to(&mut self, i: usize) -> f64;
+}
+
+/// A whole ring, worked out at once in ring order.
+struct Whole {
+    moved: Vec<Segment>,
+    joint: Vec<Joint>,
+    from: Vec<f64>,
+    to: Vec<f64>,
+}
+
+impl Whole {
+    /// The trims of `ring`, its elements `moved`.
+    fn new(ring: Ring<'_>, moved: Vec<Segment>) -> Whole {
+        let n = moved.len();
+        let mut from = vec![0.0; n];
+        let mut to = vec![1.0; n];
+        let mut joint = vec![Joint::Apart; n];
+        for i in 0..n {
+            let next = if i + 1 == n { 0 } else { i + 1 };
+            // The first element's end as the last joint finds it: trimmed by the first joint
+            // already (unless the ring is that one element); any other's not yet.
+            let settled = ring.step(i, &moved[i], &moved[next]).settle(from[i], to[next]);
+            joint[i] = settled.0;
+            if let Some((ta, tb)) = settled.1 {
+                to[i] = ta;
+                from[next] = tb;
+            }
+        }
+        Whole {
+            moved,
+            joint,
+            from,
+            to,
+        }
+    }
+}
+
+impl Trimmed for Whole {
+    fn moved(&mut self, i: usize) -> Segment {
+        self.moved[i]
+    }
+
+    fn joint(&mut self, i: usize) -> Joint {
+        self.joint[i]
+    }
+
+    fn from(&mut self, i: usize) -> f64 {
+        self.from[i]
+    }
+
+    fn to(&mut self, i: usize) -> f64 {
+        self.to[i]
+    }
+}
+
+/// A ring worked out only where asked: the moved elements asked for, and the joints their
+/// trims depend on, back to one that depends on none.
+struct Sparse<'a> {
+    ring: Ring<'a>,
+    moved: HashMap<usize, Segment>,
+    settled: HashMap<usize, Settled>,
+}
+
+impl Sparse<'_> {
+    fn settled(&mut self, i: usize) -> Settled {
+        if let Some(&s) = self.settled.get(&i) {
+            return s;
+        }
+        let n = self.ring.keep.len();
+        // The joints back from i that depend on the one before them, latest first.
+        let mut chain: Vec<(usize, Step)> = Vec::new();
+        let mut at = i;
+        loop {
+            let (a, b) = (self.moved(at), self.moved((at + 1) % n));
+            let step = self.ring.step(at, &a, &b);
+            let known_before = at == 0 || self.settled.contains_key(&(at - 1));
+            if !step.crosses() || known_before {
+                chain.push((at, step));
+                break;
+            }
+            chain.push((at, step));
+            at -= 1;
+        }
+        for (at, step) in chain.into_iter().rev() {
+            let from = match at.checked_sub(1).and_then(|p| self.settled.get(&p)) {
+                Some(&(_, Some((_, tb)))) => tb,
+                _ => 0.0,
+            };
+            let next_to = if at + 1 == n && n > 1 {
+                self.settled(0).1.map_or(1.0, |(ta, _)| ta)
+            } else {
+                1.0
+            };
+            let settled = step.settle(from, next_to);
+            self.settled.insert(at, settled);
+        }
+        self.settled.get(&i).copied().unwrap_or((Joint::Apart, None))
+    }
+}
+
+impl Trimmed for Sparse<'_> {
+    fn moved(&mut self, i: usize) -> Segment {
+        let ring = self.ring;
+        // Kept because it moves (`moves`): never the element itself.
+        let s = &ring.segs[ring.keep[i]];
+        *(self.moved)
+            .entry(i)
+            .or_insert_with(|| offset_segment(s, ring.d, ring.tol).unwrap_or(*s))
+    }
+
+    fn joint(&mut self, i: usize) -> Joint {
+        self.settled(i).0
+    }
+
+    fn from(&mut self, i: usize) -> f64 {
+        let n = self.ring.keep.len();
+        self.settled((i + n - 1) % n).1.map_or(0.0, |(_, tb)| tb)
+    }
+
+    fn to(&mut self, i: usize) -> f64 {
+        self.settled(i).1.map_or(1.0, |(ta, _)| ta)
+    }
 }
 
 /// The pieces joining moved element a (of original `seg_k`) to the next one b (of `seg_j`)
@@ -330,6 +536,15 @@ fn curvature(s: &Segment) -> f64 {
     }
 }
 
+/// False for an element that collapses when moved (see [`offset_segment`]); asked without
+/// moving an arc.
+fn moves(s: &Segment, tol: &Tolerance) -> bool {
+    match s {
+        Segment::Line(_) => offset_segment(s, 1.0, tol).is_some(),
+        Segment::Arc(_) => true,
+    }
+}
+
 /// One element moved by `d` to its left: an arc offset onto its centre becomes that point (a
 /// line of no length); `None` for a line shorter than rounding, a point whose direction means
 /// nothing (the side it would move to is a guess: a line 1e-10 mm long pointing back against
@@ -429,6 +644,70 @@ mod tests {
         let (joint, _) = raw_offset(&contour, 2.0, &tol, 0, 0, &|s| s == Source::Joint(3));
         assert_eq!(joint.len(), 1);
         assert_eq!(joint[0].source, Source::Joint(3));
+    }
+
+    /// A closed ring of `radii.len()` lines round the origin, each spoke's length given,
+    /// with an arc every `arc_every` edges: concave and convex joints mixed, so that moved
+    /// neighbours overlap (trimmed in chains along concave stretches) and part.
+    fn wobbly_ring(radii: &[f64], arc_every: usize) -> Contour {
+        let n = radii.len();
+        let at = |k: usize| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            Point::new(radii[k % n] * t.cos(), radii[k % n] * t.sin())
+        };
+        let segments = (0..n)
+            .map(|k| match Arc::from_bulge(at(k), at(k + 1), 0.2) {
+                Some(a) if k % arc_every == 0 => Segment::Arc(a),
+                _ => Segment::Line(Line::new(at(k), at(k + 1))),
+            })
+            .collect();
+        Contour::new(segments)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+        /// A few sources wanted of a long ring (its trims worked out only round them): the
+        /// pieces are those of the whole ring's offset with those sources, joined end to start
+        /// where they follow each other.
+        #[test]
+        fn a_few_wanted_sources_get_the_pieces_of_the_whole_ring(
+            radii in proptest::collection::vec(20.0..30.0f64, 80..240),
+            arc_every in 2usize..9,
+            d in 0.2..6.0f64,
+            picks in proptest::collection::vec((0usize..1000, proptest::bool::ANY), 1..6),
+        ) {
+            let contour = wobbly_ring(&radii, arc_every);
+            let n = contour.segments.len();
+            let wanted_set: Vec<Source> = picks
+                .iter()
+                .map(|&(k, joint)| if joint { Source::Joint((k % n) as u32) } else { Source::Element((k % n) as u32) })
+                .collect();
+            let tol = Tolerance::default();
+            let (all, _) = raw_offset(&contour, d, &tol, 0, 0, &|_| true);
+            let wanted = |s: Source| wanted_set.contains(&s);
+            let (some, _) = raw_offset(&contour, d, &tol, 0, 0, &wanted);
+            // As a wanted set this small is worked out: see `SPARSE_SHARE`.
+            proptest::prop_assert!(wanted_set.len() * SPARSE_SHARE < n);
+            for piece in &some {
+                let twins: Vec<&Piece> = all.iter().filter(|q| q.source == piece.source && q.segment == piece.segment).collect();
+                proptest::prop_assert_eq!(twins.len(), 1, "{:?} not in the whole ring", piece);
+            }
+            // Each wanted source's pieces are all there.
+            for w in &wanted_set {
+                let count = |pieces: &[Piece]| pieces.iter().filter(|p| p.source == *w).count();
+                if count(&all) > 0 {
+                    proptest::prop_assert_eq!(count(&some), count(&all), "{:?}", w);
+                }
+            }
+            // Pieces that follow each other in the whole ring share their node here too.
+            for w in some.windows(2) {
+                let follows = all.windows(2).any(|v| v[0].segment == w[0].segment && v[1].segment == w[1].segment);
+                if follows {
+                    proptest::prop_assert_eq!(w[0].end, w[1].start);
+                }
+            }
+        }
     }
 
     #[test]
