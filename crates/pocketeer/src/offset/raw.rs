@@ -18,9 +18,10 @@ use std::f64::consts::PI;
 ///
 /// Only the pieces `wanted` allows are returned: a moved element when its source is wanted, a
 /// joint's pieces when the joint or a moved element beside it is, so that the ring does not
-/// open where a loop may still run through it. The trimming of moved elements is worked out
-/// along the whole ring (it depends on the neighbours), so the pieces returned are those of
-/// the whole ring (only the node ids of the ends differ).
+/// open where a loop may still run through it. The trimming of a moved element depends on
+/// its neighbours' (see [`Trimmed`]); the pieces returned are those of the whole ring (only
+/// the node ids of the ends differ), though where few sources are wanted only the joints
+/// they depend on are worked out.
 ///
 /// Consecutive moved elements share a node where they meet. Where they part (a turn to the
 /// right), an arc of radius d around the joint closes the gap; where they overlap (a turn to the
