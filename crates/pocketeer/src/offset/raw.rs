@@ -95,7 +95,7 @@ const SPARSE_SHARE: usize = 8;
 
 /// The raw pieces of the `needed` moved elements of `ring` (with whether the element's own
 /// pieces and its joint's are wanted), trimmed as `trimmed` says, their nodes numbered from
-/// `next_node` (about `expected` of them); and the next free node.
+/// `next_node`; and the next free node. `expected`: about how many pieces there will be.
 fn pieces_of(
     ring: Ring<'_>,
     trimmed: &mut impl Trimmed,
