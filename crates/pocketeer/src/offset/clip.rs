@@ -102,13 +102,10 @@ fn invalid_span(
     depth: u32,
     (work, hint): (&mut u64, &mut Option<usize>),
 ) -> bool {
-    let half = 0.5 * (hi - lo) * p.segment.length();
-    let mid = 0.5 * (lo + hi);
     // Room for the rounding of the distance measured: a millionth of a micrometre for 1 m.
-    let within = r - half - 1e-12 * r.abs().max(1.0);
+    let margin = 1e-12 * r.abs().max(1.0);
     let mut measured = 0;
-    let proven =
-        within > 0.0 && walls.any_within_hinted(p.segment.point_at(mid), within, &mut measured, hint);
+    let proven = span_near(p, walls, r, (lo, hi), margin, (&mut measured, &mut *hint));
     *work = work.saturating_sub(measured);
     if proven {
         return true;
@@ -116,8 +113,25 @@ fn invalid_span(
     if depth == 0 || *work == 0 {
         return false;
     }
+    let mid = 0.5 * (lo + hi);
     invalid_span(p, walls, r, (lo, mid), depth - 1, (&mut *work, &mut *hint))
         && invalid_span(p, walls, r, (mid, hi), depth - 1, (work, hint))
+}
+
+/// True when every point of the span `(lo, hi)` of `p` is shown nearer than `r` to the
+/// profile by the span's middle: the distance changes no faster than the point moves along
+/// the piece, so a middle nearer than r − h (h: the span's half length) less `margin` shows
+/// it. `measured` and `hint` as in [`SegmentIndex::any_within_hinted`].
+fn span_near(
+    p: &Piece,
+    walls: &SegmentIndex,
+    r: f64,
+    (lo, hi): (f64, f64),
+    margin: f64,
+    (measured, hint): (&mut u64, &mut Option<usize>),
+) -> bool {
+    let within = r - 0.5 * (hi - lo) * p.segment.length() - margin;
+    within > 0.0 && walls.any_within_hinted(p.segment.point_at(0.5 * (lo + hi)), within, measured, hint)
 }
 
 /// Appends to `out`, in order, the spans of `(lo, hi)` on `p` not proven nearer than `r` to
@@ -130,20 +144,19 @@ fn keep_spans(
     depth: u32,
     (out, work): (&mut Vec<(f64, f64)>, &mut u64),
 ) {
-    let half = 0.5 * (hi - lo) * p.segment.length();
-    let mid = 0.5 * (lo + hi);
     if *work > WORK {
         out.push((lo, hi));
         return;
     }
     *work += 1;
-    if r - half > 0.0 && walls.any_within(p.segment.point_at(mid), r - half) {
+    if span_near(p, walls, r, (lo, hi), 0.0, (&mut 0, &mut None)) {
         return;
     }
     if depth == 0 {
         out.push((lo, hi));
         return;
     }
+    let mid = 0.5 * (lo + hi);
     keep_spans(p, walls, r, (lo, mid), depth - 1, (&mut *out, &mut *work));
     keep_spans(p, walls, r, (mid, hi), depth - 1, (out, work));
 }

@@ -63,10 +63,9 @@ pub fn raw_offset(
     let element_wanted = |i: usize| wanted(Source::Element((base + keep[i]) as u32));
     let wants = |i: usize| {
         let own = element_wanted(i);
-        let next = if i + 1 == n { 0 } else { i + 1 };
         (
             own,
-            own || element_wanted(next) || wanted(Source::Joint((base + keep[i]) as u32)),
+            own || element_wanted(after(i, n)) || wanted(Source::Joint((base + keep[i]) as u32)),
         )
     };
     let needed = (0..n).map(|i| (i, wants(i))).filter(|(_, (_, joint))| *joint);
@@ -111,7 +110,7 @@ fn pieces_of(
     // a joining piece between them where they do not meet.
     let mut pieces = Vec::with_capacity(expected);
     for (i, (want_element, want_joint)) in needed {
-        let next = if i + 1 == n { 0 } else { i + 1 };
+        let next = after(i, n);
         let (k, j) = (keep[i], keep[next]);
         let (a, b) = (trimmed.moved(i), trimmed.moved(next));
         let (joint, from, to) = (trimmed.joint(i), trimmed.from(i), trimmed.to(i));
@@ -163,6 +162,15 @@ fn pieces_of(
     (pieces, next_node)
 }
 
+/// The moved element after element i of a ring of `n`.
+fn after(i: usize, n: usize) -> usize {
+    if i + 1 == n {
+        0
+    } else {
+        i + 1
+    }
+}
+
 /// Consecutive moved elements k and j follow each other in the contour, across the points
 /// dropped between them if any; a joint needs two of them (a lone element among points
 /// closes on itself, j = k, unless it is the whole contour, a circle).
@@ -185,7 +193,7 @@ impl Ring<'_> {
     /// beside it are known.
     fn step(&self, i: usize, a: &Segment, b: &Segment) -> Step {
         let n = self.keep.len();
-        let (k, j) = (self.keep[i], self.keep[if i + 1 == n { 0 } else { i + 1 }]);
+        let (k, j) = (self.keep[i], self.keep[after(i, n)]);
         if a.end().distance(b.start()) <= self.tol.rounding() {
             return Step::Fixed(Joint::Meet);
         }
@@ -276,7 +284,7 @@ impl Whole {
         let mut to = vec![1.0; n];
         let mut joint = vec![Joint::Apart; n];
         for i in 0..n {
-            let next = if i + 1 == n { 0 } else { i + 1 };
+            let next = after(i, n);
             // The first element's end as the last joint finds it: trimmed by the first joint
             // already (unless the ring is that one element); any other's not yet.
             let settled = ring.step(i, &moved[i], &moved[next]).settle(from[i], to[next]);
@@ -331,14 +339,13 @@ impl Sparse<'_> {
         let mut chain: Vec<(usize, Step)> = Vec::new();
         let mut at = i;
         loop {
-            let (a, b) = (self.moved(at), self.moved((at + 1) % n));
+            let (a, b) = (self.moved(at), self.moved(after(at, n)));
             let step = self.ring.step(at, &a, &b);
-            let known_before = at == 0 || self.settled.contains_key(&(at - 1));
-            if !step.crosses() || known_before {
-                chain.push((at, step));
+            let depends = step.crosses() && at > 0 && !self.settled.contains_key(&(at - 1));
+            chain.push((at, step));
+            if !depends {
                 break;
             }
-            chain.push((at, step));
             at -= 1;
         }
         for (at, step) in chain.into_iter().rev() {
